@@ -1,0 +1,53 @@
+// Diagnostics: library code reports errors, warnings and notes to a sink and returns; only app/
+// prints. The printer renders them clang-style: file:line:col, the source line, a caret with ~
+// under the span, notes at related spans, help lines.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lang/source.h"
+
+namespace wsd::lang {
+
+enum class Severity { Error, Warning, Note };
+
+struct Note {
+    Span span;
+    std::string message;
+};
+
+struct Diagnostic {
+    Severity severity = Severity::Error;
+    Span span;
+    std::string message;          // lower-case, no trailing period
+    std::vector<Note> notes;      // printed after, each with its own source line
+    std::vector<std::string> help;  // "= help: ..." lines
+};
+
+class Diagnostics {
+public:
+    static constexpr size_t max_errors = 20;
+
+    Diagnostic& error(Span span, std::string message);
+    Diagnostic& warning(Span span, std::string message);
+    size_t error_count() const { return errors_; }
+    bool has_errors() const { return errors_ > 0; }
+    bool too_many() const { return errors_ >= max_errors; }
+    const std::vector<Diagnostic>& all() const { return diags_; }
+    // Include chain: notes appended to every diagnostic reported while a file is being included.
+    void push_include(Span include_site);
+    void pop_include();
+private:
+    std::vector<Diagnostic> diags_;
+    std::vector<Span> include_stack_;
+    size_t errors_ = 0;
+};
+
+// Clang-style text of every diagnostic; "too many errors" after max_errors.
+std::string format_diagnostics(const Diagnostics& diags, const SourceManager& sources);
+
+// "did you mean": the closest candidate within a small edit distance, or "".
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace wsd::lang

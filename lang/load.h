@@ -1,0 +1,45 @@
+// The whole front end in one call: read → lex → parse → evaluate → lower → build, stopping after
+// any stage that reported errors. This is what `wsd check` and `wsd render` run.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "lang/diagnostics.h"
+#include "render/renderer.h"
+#include "render/scene_spec.h"
+
+namespace wsd::lang {
+
+struct CheckSummary {
+    size_t objects = 0;    // evaluated object statements; a mesh counts once
+    size_t triangles = 0;  // triangle objects plus mesh triangles
+    size_t lights = 0;
+    size_t materials = 0;  // distinct material values used by objects
+};
+
+struct LoadOptions {
+    bool fragment = false;   // a `.wsdi` file: no camera required, nothing is built
+    bool build = true;       // build the render scene (loads textures, validates geometry)
+    bool use_bvh = true;
+    int threads = 0;
+    std::function<void(render::SceneSpec&)> adjust;  // command-line overrides, before building
+};
+
+struct LoadedScene {
+    render::SceneSpec spec;
+    std::shared_ptr<const render::Scene> scene;  // null unless options.build
+    CheckSummary summary;
+    double parse_seconds = 0;  // read + lex + parse + evaluate + lower
+    double build_seconds = 0;
+};
+
+// `path` is used for messages and to resolve relative paths; `text` is the file's contents
+// (the caller reads it, so that I/O errors on command-line files stay the caller's).
+std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
+                                      SourceManager& sources, Diagnostics& diags,
+                                      const LoadOptions& options);
+
+}  // namespace wsd::lang

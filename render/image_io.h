@@ -1,0 +1,25 @@
+// Reading and writing images: the one place that defines the stb implementation macros.
+// 8-bit formats are clamped, sRGB-encoded and rounded; HDR and PFM are linear floats.
+#pragma once
+
+#include <string>
+
+#include "render/renderer.h"
+
+namespace wsd::render {
+
+enum class ImageFormat { Png, Jpeg, Bmp, Tga, Hdr, Pfm, Unknown };
+
+ImageFormat format_from_extension(const std::string& path);  // case-insensitive
+
+double srgb_encode(double linear);  // [0,1] → [0,1]
+double srgb_decode(double encoded);
+
+// Writes to a temporary file in the same directory, then renames it over `path`; on failure
+// nothing is left behind and `error` says why. Returns false on failure.
+bool write_image(const std::string& path, const Film& film, std::string& error);
+
+// Reads any supported format into linear RGB (8-bit formats are sRGB-decoded). False + error.
+bool read_image(const std::string& path, Film& film, std::string& error);
+
+}  // namespace wsd::render

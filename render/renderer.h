@@ -1,0 +1,54 @@
+// The renderer's entry points: build a scene from a SceneSpec, render it (or a region of it) with
+// threads into a linear float film, and report statistics and progress.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/scene_spec.h"
+#include "render/stats.h"
+
+namespace wsd::render {
+
+struct Film {
+    int width = 0, height = 0;       // size of this film (a region's size for tiles)
+    std::vector<float> rgb;          // linear RGB, row-major from the top row
+};
+
+// Half-open pixel rectangle [x0, x1) × [y0, y1) of the full image.
+struct Region {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+struct RenderOptions {
+    int threads = 0;                    // 0 = all cores
+    bool use_bvh = true;
+    std::optional<Region> region;       // unset: the whole image
+    bool adaptive_lights = false;       // force adaptive sampling on every area light
+    bool specialise = true;             // false: the unspecialised reference path (tests)
+    std::function<void(double fraction, const RayStats& so_far)> progress;  // may be empty
+    const std::atomic<bool>* cancel = nullptr;  // set to stop early (render returns false)
+};
+
+struct RenderResult {
+    Film film;
+    RayStats stats;
+    double build_seconds = 0;
+    double render_seconds = 0;
+    bool cancelled = false;
+    std::vector<std::string> effects;   // the effects the scene calls for (see effects.h)
+};
+
+class Scene;  // geometry + lights + materials + textures, ready to render
+
+// Builds everything the render needs; nullptr with errors appended on bad input.
+std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors,
+                                         bool use_bvh = true, int threads = 0);
+
+RenderResult render(const Scene& scene, const RenderOptions& options);
+
+}  // namespace wsd::render

@@ -1,0 +1,50 @@
+// Textures: image (bilinear, sRGB decoded to linear, each file loaded once), checker, and Perlin
+// (noise, turbulence, marble, wood) evaluated in the object's frame; also the bump perturbation.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/geometry.h"
+#include "render/scene_spec.h"
+
+namespace wsd::render {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgb;  // linear, row-major from the top row, 3 floats a pixel
+};
+
+// Loads PNG/JPEG/BMP/TGA (sRGB → linear) and HDR (linear). On failure returns nullptr and sets
+// `error` to a message naming the path that was tried.
+std::shared_ptr<const Image> load_image(const std::string& path, std::string& error);
+
+// Each file is loaded once and shared by every texture that names it.
+class ImageCache {
+public:
+    std::shared_ptr<const Image> get(const std::string& path, std::string& error);
+private:
+    std::map<std::string, std::shared_ptr<const Image>> images_;
+};
+
+class Texture {
+public:
+    // nullptr + error for a missing/unreadable image.
+    static std::unique_ptr<Texture> create(const TextureSpec& spec, ImageCache& cache, std::string& error);
+    virtual ~Texture() = default;
+    virtual Color eval(const SurfaceHit& s, RayStats& stats) const = 0;
+    // The scalar coefficient in [0, 1] at an object-frame point (Perlin kinds; used by bumps).
+    virtual double coef(const Vec3& p, RayStats& stats) const { (void)p; (void)stats; return 0.5; }
+};
+
+// The bumped shading normal: normalize(n + strength·(f(q), f(q.yzx), f(q.zxy))), f = 2·coef − 1,
+// q the object-frame point; the perturbation is taken to world space with the object's rotation.
+Vec3 bump_normal(const Texture& bump, double strength, const SurfaceHit& s, const Vec3& n,
+                 const Mat4& object_to_world, RayStats& stats);
+
+// Ken Perlin's improved noise (2002), range about [-1, 1].
+double perlin_noise(double x, double y, double z);
+
+}  // namespace wsd::render
