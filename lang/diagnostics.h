@@ -23,12 +23,17 @@ struct Diagnostic {
     std::string message;          // lower-case, no trailing period
     std::vector<Note> notes;      // printed after, each with its own source line
     std::vector<std::string> help;  // "= help: ..." lines
+    // The `include` sites that led to the file of `span`, innermost first (filled by the sink
+    // from push_include); printed after the notes as "in file included from here" notes.
+    std::vector<Span> include_chain;
 };
 
 class Diagnostics {
 public:
     static constexpr size_t max_errors = 20;
 
+    // Past max_errors an error is counted but not kept: the returned reference is a scratch
+    // diagnostic, so callers may still add notes and help to it.
     Diagnostic& error(Span span, std::string message);
     Diagnostic& warning(Span span, std::string message);
     size_t error_count() const { return errors_; }
@@ -42,7 +47,11 @@ private:
     std::vector<Diagnostic> diags_;
     std::vector<Span> include_stack_;
     size_t errors_ = 0;
+    Diagnostic discarded_;
 };
+
+// The notes printed for a diagnostic, in order: its own notes, then one per include site.
+std::vector<Note> notes_with_includes(const Diagnostic& diag);
 
 // Clang-style text of every diagnostic; "too many errors" after max_errors.
 std::string format_diagnostics(const Diagnostics& diags, const SourceManager& sources);

@@ -27,6 +27,22 @@ struct LineCol {
     uint32_t column = 1;  // 1-based, in code points
 };
 
+// One step of UTF-8 decoding at `pos`: a valid sequence gives its code point and length; an
+// invalid byte (bad lead, truncated or overlong sequence, surrogate, > U+10FFFF) gives valid =
+// false and length 1, so every byte of a broken sequence is reported on its own.
+struct Utf8Step {
+    uint32_t codepoint = 0;
+    uint32_t length = 1;
+    bool valid = true;
+};
+Utf8Step decode_utf8(std::string_view text, size_t pos);
+
+// Code points (invalid bytes count one each) in text[begin, end): the column distance.
+uint32_t count_columns(std::string_view text, size_t begin, size_t end);
+
+// Number of bytes of a leading UTF-8 byte-order mark (0 or 3); the lexer and columns skip it.
+size_t bom_length(std::string_view text);
+
 class SourceManager {
 public:
     uint32_t add(std::string path, std::string text);  // computes the line table

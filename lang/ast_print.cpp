@@ -1,0 +1,253 @@
+// The deterministic AST dump (an indented S-expression, one node per line, each with @LINE:COL;
+// the format is documented in tests/golden/README.md) and the recovery of source spans inside
+// packed lists, which the dump prints element by element like a generic list.
+#include <charconv>
+
+#include "lang/ast.h"
+#include "lang/lexer.h"
+#include "lang/parser.h"
+
+namespace wsd::lang {
+
+PackedElementSpans packed_element_spans(const PackedVectors& packed, size_t index,
+                                        const SourceManager& sources) {
+    PackedElementSpans spans;
+    const uint32_t file = packed.file;
+    Lexer lexer(file, sources.file(file).text, nullptr);
+    lexer.reset(packed.offsets.at(index));
+    Token t = lexer.next();  // '<'
+    spans.element = {file, t.begin, t.end};
+    for (int i = 0; i < packed.dims && i < 3; ++i) {
+        t = lexer.next();
+        spans.minus[i] = {file, t.begin, t.begin};
+        if (t.kind == TokenKind::Minus) {
+            spans.minus[i].end = t.end;
+            t = lexer.next();
+        }
+        spans.number[i] = {file, t.begin, t.end};
+        spans.component[i] = {file, spans.minus[i].begin, t.end};
+        spans.count = i + 1;
+        t = lexer.next();  // ',' or '>'
+    }
+    spans.element.end = t.end;
+    return spans;
+}
+
+namespace {
+
+const char* binary_name(BinaryOp op) {
+    switch (op) {
+    case BinaryOp::Or: return "||";
+    case BinaryOp::And: return "&&";
+    case BinaryOp::Eq: return "==";
+    case BinaryOp::Ne: return "!=";
+    case BinaryOp::Lt: return "<";
+    case BinaryOp::Le: return "<=";
+    case BinaryOp::Gt: return ">";
+    case BinaryOp::Ge: return ">=";
+    case BinaryOp::Add: return "+";
+    case BinaryOp::Sub: return "-";
+    case BinaryOp::Mul: return "*";
+    case BinaryOp::Div: return "/";
+    case BinaryOp::Mod: return "%";
+    }
+    return "?";
+}
+
+const char* block_name(BlockKind kind) {
+    switch (kind) {
+    case BlockKind::Settings: return "settings";
+    case BlockKind::Camera: return "camera";
+    case BlockKind::Light: return "light";
+    case BlockKind::Sphere: return "sphere";
+    case BlockKind::Box: return "box";
+    case BlockKind::Triangle: return "triangle";
+    case BlockKind::Plane: return "plane";
+    case BlockKind::Mesh: return "mesh";
+    }
+    return "?";
+}
+
+std::string format_number(double v) {
+    char buf[64];
+    const auto result = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, result.ptr);
+}
+
+std::string quote_string(const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        default: out += c;
+        }
+    }
+    return out + "\"";
+}
+
+// "a b", or "a" when b is empty (a name missing after a syntax error, a triangle's vertices).
+std::string join(const std::string& a, const std::string& b) { return b.empty() ? a : a + " " + b; }
+
+class Printer {
+public:
+    explicit Printer(const SourceManager& sources) : sources_(sources) {}
+
+    void statement(const Stmt& s);
+    std::string out;
+
+private:
+    // "(label @L:C" on a new line at the current depth; close() appends the ')'.
+    void open(const std::string& label, Span at) {
+        if (!out.empty() && out.back() != '\n') out += '\n';
+        out.append(2 * static_cast<size_t>(indent_), ' ');
+        const LineCol lc = locate(at);
+        out += "(" + label + " @" + std::to_string(lc.line) + ":" + std::to_string(lc.column);
+        ++indent_;
+    }
+    void close() {
+        out += ')';
+        --indent_;
+    }
+    void leaf(const std::string& label, Span at) {
+        open(label, at);
+        close();
+    }
+    void expr(const Expr& e);
+    void block(const Block& b);
+    void packed(const Expr& e);
+
+    // line_col, but counting columns on from the previous position when it is on the same line
+    // before this one (the usual case: nodes print in source order), so that a dump of a long
+    // single-line file is linear, not quadratic.
+    LineCol locate(Span at) {
+        if (at.file == last_file_ && at.begin >= last_offset_ && have_last_) {
+            const auto& starts = sources_.file(at.file).line_starts;
+            const bool same_line = last_.line >= starts.size() || at.begin < starts[last_.line];
+            if (same_line) {
+                last_.column += count_columns(sources_.file(at.file).text, last_offset_, at.begin);
+                last_offset_ = at.begin;
+                return last_;
+            }
+        }
+        last_ = sources_.line_col(at.file, at.begin);
+        last_file_ = at.file;
+        last_offset_ = at.begin;
+        have_last_ = true;
+        return last_;
+    }
+
+    const SourceManager& sources_;
+    int indent_ = 0;
+    bool have_last_ = false;
+    uint32_t last_file_ = 0, last_offset_ = 0;
+    LineCol last_;
+};
+
+void Printer::statement(const Stmt& s) {
+    switch (s.kind) {
+    case StmtKind::Let:
+        open(join("let", s.name), s.span);
+        if (s.value) expr(*s.value);
+        close();
+        break;
+    case StmtKind::For:
+        open(join(join("for", s.name), s.range_end ? "range" : "list"), s.span);
+        if (s.value) expr(*s.value);
+        if (s.range_end) expr(*s.range_end);
+        for (const StmtPtr& b : s.body) statement(*b);
+        close();
+        break;
+    case StmtKind::If:
+        open("if", s.span);
+        for (const IfBranch& branch : s.branches) {
+            open(branch.condition ? "branch" : "else", branch.keyword);
+            if (branch.condition) expr(*branch.condition);
+            for (const StmtPtr& b : branch.body) statement(*b);
+            close();
+        }
+        close();
+        break;
+    case StmtKind::Include:
+        leaf("include " + quote_string(s.name), s.span);
+        break;
+    case StmtKind::Block: {
+        std::string label = block_name(s.block_kind);
+        if (s.block_kind == BlockKind::Light) label = join(label, s.name);
+        open(label, s.span);
+        block(s.block);
+        close();
+        break;
+    }
+    case StmtKind::Bad:
+        leaf("bad", s.span);
+        break;
+    }
+}
+
+void Printer::block(const Block& b) {
+    for (const Item& item : b.items) {
+        open(join("item", item.name), item.name_span);
+        for (const ExprPtr& v : item.values) expr(*v);
+        close();
+    }
+}
+
+void Printer::expr(const Expr& e) {
+    switch (e.kind) {
+    case ExprKind::Number: leaf("number " + format_number(e.number), e.span); return;
+    case ExprKind::String: leaf("string " + quote_string(e.text), e.span); return;
+    case ExprKind::Bool: leaf(e.boolean ? "bool true" : "bool false", e.span); return;
+    case ExprKind::Ident: leaf("ident " + e.text, e.span); return;
+    case ExprKind::Bad: leaf("bad", e.span); return;
+    case ExprKind::PackedList: packed(e); return;
+    case ExprKind::Vector: open("vector", e.span); break;
+    case ExprKind::List: open("list", e.span); break;
+    case ExprKind::Unary: open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span); break;
+    case ExprKind::Binary: open(std::string("binary ") + binary_name(e.binary_op), e.op_span); break;
+    case ExprKind::Call: open("call " + e.text, e.span); break;
+    case ExprKind::Member: open("member " + e.text, e.op_span); break;
+    case ExprKind::Index: open("index", e.op_span); break;
+    case ExprKind::Material: open("material", e.span); break;
+    case ExprKind::Image: open("image", e.span); break;
+    case ExprKind::Checker: open("checker", e.span); break;
+    case ExprKind::Perlin: open("perlin", e.span); break;
+    }
+    for (const ExprPtr& a : e.args) expr(*a);
+    if (e.block) block(*e.block);
+    close();
+}
+
+// Each element as the generic parse would print it: `-1` is (unary - (number 1)).
+void Printer::packed(const Expr& e) {
+    open("packed_list", e.span);
+    const PackedVectors& p = *e.packed;
+    for (size_t i = 0; i < p.size(); ++i) {
+        const PackedElementSpans spans = packed_element_spans(p, i, sources_);
+        open("vector", spans.element);
+        for (int c = 0; c < spans.count; ++c) {
+            const double v = p.values[i * static_cast<size_t>(p.dims) + static_cast<size_t>(c)];
+            const bool negated = spans.minus[c].end > spans.minus[c].begin;
+            if (negated) open("unary -", spans.minus[c]);
+            leaf("number " + format_number(negated ? -v : v), spans.number[c]);
+            if (negated) close();
+        }
+        close();
+    }
+    close();
+}
+
+}  // namespace
+
+std::string print_ast(const Program& program, const SourceManager& sources) {
+    Printer printer(sources);
+    for (const StmtPtr& s : program.statements) {
+        printer.statement(*s);
+        printer.out += '\n';
+    }
+    return printer.out;
+}
+
+}  // namespace wsd::lang

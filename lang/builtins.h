@@ -1,0 +1,42 @@
+// Built-in functions (sin … srgb) and constants (pi, on, off). They live in a scope outside the
+// file's own, so a `let` may shadow them. Each function checks its argument count and types and
+// reports domain errors and non-finite results at the function's name.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/value.h"
+
+namespace wsd::lang {
+
+struct CallContext {
+    const Expr& call;                // op_span = the function's name, args = argument expressions
+    const std::vector<Value>& args;  // evaluated arguments, one per call.args
+    Diagnostics& diags;
+};
+
+using BuiltinFn = std::optional<Value> (*)(const CallContext&);
+
+struct Builtin {
+    std::string_view name;
+    int arity;
+    BuiltinFn fn;
+};
+
+const std::vector<Builtin>& builtin_functions();
+const Builtin* find_builtin(std::string_view name);
+
+struct BuiltinConstant {
+    std::string_view name;
+    Value value;  // with an empty span
+};
+const std::vector<BuiltinConstant>& builtin_constants();
+
+// The sRGB transfer function, decoding: 0..1 encoded → 0..1 linear.
+double srgb_to_linear(double c);
+
+}  // namespace wsd::lang

@@ -1,0 +1,368 @@
+// The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
+// lists, against a global iteration budget), if (untaken branches are never evaluated), include
+// (relative paths, once per scene, cycles and depth), and block statements handed to lowering.
+// Expressions are in evaluate.cpp.
+#include "lang/interpreter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "lang/builtins.h"
+#include "lang/parser.h"
+
+namespace wsd::lang {
+
+namespace {
+
+bool read_file(const std::string& path, std::string& out, std::string& reason) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        reason = "it is a directory";
+        return false;
+    }
+    errno = 0;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        reason = errno ? std::strerror(errno) : "cannot open it";
+        if (!reason.empty()) reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
+        return false;
+    }
+    in.seekg(0, std::ios::end);
+    std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size > 0) {
+        out.resize(static_cast<size_t>(size));
+        in.read(out.data(), size);
+        out.resize(static_cast<size_t>(in.gcount()));
+    }
+    if (in.bad()) {
+        reason = "a read error occurred";
+        return false;
+    }
+    return true;
+}
+
+std::string quoted(std::string_view s) {
+    std::string out(1, '\'');
+    out.append(s);
+    out += '\'';
+    return out;
+}
+
+}  // namespace
+
+Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
+    ok_ = ++in_.depth_ <= in_.limits_.eval_depth;
+    if (!ok_ && !in_.aborted_) {
+        in_.diags_.error(at, "nesting too deep (limit " + std::to_string(in_.limits_.eval_depth) + ")");
+        in_.abort();
+    }
+}
+
+Interpreter::Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilder& scene, Limits limits)
+    : sources_(sources), diags_(diags), scene_(scene), limits_(limits) {
+    push_scope();  // the file's top scope; builtins live outside it
+}
+
+Interpreter::~Interpreter() = default;
+
+// ---- scopes ------------------------------------------------------------------------------------
+
+const Interpreter::Binding* Interpreter::Scope::find(std::string_view name) const {
+    if (!index.empty()) {
+        auto it = index.find(name);
+        return it == index.end() ? nullptr : &bindings[it->second];
+    }
+    for (const Binding& b : bindings)
+        if (b.name == name) return &b;
+    return nullptr;
+}
+
+void Interpreter::Scope::clear() {
+    bindings.clear();
+    if (!index.empty()) index.clear();  // clear() on an empty map still wipes its buckets
+}
+
+void Interpreter::push_scope() {
+    if (scope_count_ == scopes_.size()) scopes_.emplace_back();
+    scopes_[scope_count_++].clear();
+}
+
+void Interpreter::pop_scope() {
+    if (scope_count_ > 1) scopes_[--scope_count_].clear();
+}
+
+void Interpreter::bind(std::string_view name, Span span, std::optional<Value> value) {
+    Scope& scope = scopes_[scope_count_ - 1];
+    if (const Binding* first = scope.find(name)) {
+        Diagnostic& d = diags_.error(span, quoted(name) + " is already defined in this scope");
+        d.notes.push_back({first->span, "first defined here"});
+        return;
+    }
+    constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
+    scope.bindings.push_back(Binding{name, span, std::move(value)});
+    if (!scope.index.empty()) {
+        scope.index.emplace(name, scope.bindings.size() - 1);
+    } else if (scope.bindings.size() >= kIndexFrom) {
+        for (size_t i = 0; i < scope.bindings.size(); ++i) scope.index.emplace(scope.bindings[i].name, i);
+    }
+}
+
+const Interpreter::Binding* Interpreter::find(std::string_view name) const {
+    for (size_t i = scope_count_; i-- > 0;)
+        if (const Binding* b = scopes_[i].find(name)) return b;
+    return nullptr;
+}
+
+std::vector<std::string> Interpreter::visible_names() const {
+    std::vector<std::string> names;
+    for (size_t i = 0; i < scope_count_; ++i)
+        for (const Binding& b : scopes_[i].bindings) names.emplace_back(b.name);
+    for (const BuiltinConstant& c : builtin_constants()) names.emplace_back(c.name);
+    for (const Builtin& f : builtin_functions()) names.emplace_back(f.name);
+    return names;
+}
+
+std::optional<Value> Interpreter::lookup(std::string_view name) const {
+    const Binding* b = scopes_[0].find(name);
+    if (!b) return std::nullopt;
+    return b->value;
+}
+
+std::optional<MaterialPtr> Interpreter::default_material(Span keyword) {
+    const Binding* b = find("default_material");
+    if (!b) return MaterialPtr{};
+    if (!b->value) return std::nullopt;
+    if (!b->value->is(ValueType::Material)) {
+        Diagnostic& d = diags_.error(keyword, std::string("'default_material' is a ") + type_name(b->value->type()) +
+                                                  ", not a material");
+        d.notes.push_back({b->span, "'default_material' is defined here"});
+        return std::nullopt;
+    }
+    return b->value->material();
+}
+
+BlockContext Interpreter::context() {
+    return BlockContext{sources_, diags_, [this](const Expr& e) { return eval(e); }, chain_,
+                        [this](Span keyword) { return default_material(keyword); }, &obj_cache_};
+}
+
+// ---- statements --------------------------------------------------------------------------------
+
+void Interpreter::run(const Program& program) {
+    std::string key = canonical_path(sources_.file(program.file).path);
+    include_stack_.push_back(key);
+    include_stack_files_.push_back(program.file);
+    included_.insert(key);
+    exec_all(program.statements);
+    include_stack_.pop_back();
+    include_stack_files_.pop_back();
+}
+
+std::optional<Value> Interpreter::evaluate(const Expr& expr) { return eval(expr); }
+
+void Interpreter::exec_all(const std::vector<StmtPtr>& body) {
+    for (const StmtPtr& s : body) {
+        if (stopped()) return;
+        if (s) exec(*s);
+    }
+}
+
+void Interpreter::exec(const Stmt& stmt) {
+    DepthGuard guard(*this, stmt.keyword);
+    if (!guard.ok()) return;
+    switch (stmt.kind) {
+    case StmtKind::Let: exec_let(stmt); break;
+    case StmtKind::For: exec_for(stmt); break;
+    case StmtKind::If: exec_if(stmt); break;
+    case StmtKind::Include: exec_include(stmt); break;
+    case StmtKind::Block: exec_block(stmt); break;
+    case StmtKind::Bad: break;  // the parser reported it
+    }
+}
+
+void Interpreter::exec_let(const Stmt& stmt) {
+    std::optional<Value> value;
+    if (stmt.value) value = eval(*stmt.value);
+    bind(stmt.name, stmt.name_span, std::move(value));
+}
+
+bool Interpreter::take_iterations(double count, Span at) {
+    const double left = static_cast<double>(limits_.loop_iterations - iterations_);
+    if (count > left) {
+        diags_.error(at, "loop of " + format_number(count) + " iterations exceeds the limit of " +
+                             std::to_string(limits_.loop_iterations) + " loop iterations in total (" +
+                             format_number(left) + " left)");
+        abort();
+        return false;
+    }
+    iterations_ += static_cast<uint64_t>(count);
+    return true;
+}
+
+// One iteration in a fresh scope; false stops the loop (after an error, so that a broken body is
+// reported once rather than once per iteration).
+bool Interpreter::run_loop_body(const Stmt& stmt, const Value& item) {
+    const size_t errors_before = diags_.error_count();
+    push_scope();
+    bind(stmt.name, stmt.name_span, item);
+    exec_all(stmt.body);
+    pop_scope();
+    return !stopped() && diags_.error_count() == errors_before;
+}
+
+void Interpreter::exec_for(const Stmt& stmt) {
+    if (!stmt.value) return;
+    if (stmt.range_end) {
+        std::optional<Value> a = eval(*stmt.value);
+        std::optional<Value> b = eval(*stmt.range_end);
+        if (!a || !b) return;
+        bool ok = true;
+        for (const auto* bound : {&*a, &*b}) {
+            const Expr& e = bound == &*a ? *stmt.value : *stmt.range_end;
+            if (!bound->is(ValueType::Number)) {
+                diags_.error(e.span, std::string("'for' range bounds must be numbers, found ") + type_name(bound->type()));
+                ok = false;
+            } else if (bound->number() != std::floor(bound->number())) {
+                diags_.error(e.span, "'for' range bounds must be integers, found " + format_number(bound->number()));
+                ok = false;
+            }
+        }
+        if (!ok) return;
+        const Span range{stmt.value->span.file, stmt.value->span.begin, stmt.range_end->span.end};
+        const double first = a->number(), last = b->number();
+        const double count = last > first ? last - first : 0.0;
+        if (!take_iterations(count, range)) return;
+        // An integer counter: `first + k` stays exact where `i += 1` could stall above 2^53.
+        const auto n = static_cast<uint64_t>(count);
+        for (uint64_t k = 0; k < n; ++k)
+            if (!run_loop_body(stmt, Value::make_number(first + static_cast<double>(k), range))) break;
+        return;
+    }
+    std::optional<Value> list = eval(*stmt.value);
+    if (!list) return;
+    if (!list->is(ValueType::List)) {
+        diags_.error(stmt.value->span, std::string("'for' needs a list or a range 'A .. B', found ") +
+                                           type_name(list->type()));
+        return;
+    }
+    const ListPtr items = list->list_ptr();  // keeps the list alive while the body runs
+    if (!take_iterations(static_cast<double>(items->size()), stmt.value->span)) return;
+    for (size_t i = 0; i < items->size(); ++i)
+        if (!run_loop_body(stmt, items->at(i, sources_))) break;
+}
+
+void Interpreter::exec_if(const Stmt& stmt) {
+    for (const IfBranch& branch : stmt.branches) {
+        if (branch.condition) {
+            std::optional<Value> c = eval(*branch.condition);
+            if (!c) return;
+            if (!c->is(ValueType::Bool)) {
+                diags_.error(branch.condition->span,
+                             std::string("'if' condition must be a bool, found ") + type_name(c->type()));
+                return;
+            }
+            if (!c->boolean()) continue;
+        }
+        push_scope();
+        exec_all(branch.body);
+        pop_scope();
+        return;
+    }
+}
+
+void Interpreter::exec_include(const Stmt& stmt) {
+    const Span at = stmt.name_span;
+    if (include_depth_ >= limits_.include_depth) {
+        diags_.error(at, "includes nested too deep (limit " + std::to_string(limits_.include_depth) + ")");
+        abort();
+        return;
+    }
+    const std::string path = resolve_path(sources_, at.file, stmt.name);
+    const std::string key = canonical_path(path);
+    auto on_stack = std::find(include_stack_.begin(), include_stack_.end(), key);
+    if (on_stack != include_stack_.end()) {
+        // File names only: the locations (this error and its include notes) give the full paths.
+        auto name = [](const std::string& p) { return std::filesystem::path(p).filename().string(); };
+        std::string cycle;
+        for (size_t i = static_cast<size_t>(on_stack - include_stack_.begin()); i < include_stack_.size(); ++i)
+            cycle += name(sources_.file(include_stack_files_[i]).path) + " → ";
+        diags_.error(at, "include cycle: " + cycle + name(path));
+        abort();
+        return;
+    }
+    if (included_.count(key)) return;  // once per scene
+    std::string text, reason;
+    if (!read_file(path, text, reason)) {
+        diags_.error(at, "cannot read include file '" + path + "': " + reason);
+        abort();
+        return;
+    }
+    included_.insert(key);
+    const uint32_t file = sources_.add(path, std::move(text));
+    diags_.push_include(at);
+    const size_t errors_before = diags_.error_count();
+    auto program = std::make_unique<Program>(parse(file, sources_, diags_));
+    if (diags_.error_count() == errors_before) {
+        include_stack_.push_back(key);
+        include_stack_files_.push_back(file);
+        chain_ = std::make_shared<IncludeSite>(IncludeSite{at, chain_});
+        ++include_depth_;
+        exec_all(program->statements);  // in the scope where the include stands
+        --include_depth_;
+        chain_ = chain_->parent;
+        include_stack_.pop_back();
+        include_stack_files_.pop_back();
+    } else {
+        abort();  // its definitions are missing: running on would only cascade
+    }
+    diags_.pop_include();
+    programs_.push_back(std::move(program));
+}
+
+void Interpreter::exec_block(const Stmt& stmt) {
+    BlockContext ctx = context();
+    switch (stmt.block_kind) {
+    case BlockKind::Settings:
+    case BlockKind::Camera: {
+        const bool camera = stmt.block_kind == BlockKind::Camera;
+        std::optional<Span>& first = camera ? first_camera_ : first_settings_;
+        // A second one is an error, but its properties are still checked (and then dropped).
+        const bool second = first.has_value();
+        if (second) {
+            Diagnostic& d = diags_.error(stmt.keyword, camera ? "more than one camera" : "more than one 'settings' block");
+            d.notes.push_back({*first, camera ? "the first camera is here" : "the first 'settings' block is here"});
+        } else {
+            first = stmt.keyword;
+        }
+        if (camera) {
+            auto c = lower_camera(stmt, ctx);
+            if (c && !second) scene_.set_camera(*c, stmt.keyword, chain_);
+        } else {
+            auto s = lower_settings(stmt, ctx);
+            if (s && !second) scene_.set_settings(*s, stmt.keyword, chain_);
+        }
+        return;
+    }
+    case BlockKind::Light:
+        if (auto l = lower_light(stmt, ctx)) scene_.add_light(*l, stmt.keyword, chain_);
+        return;
+    default: break;
+    }
+    std::optional<LoweredObject> object = lower_object(stmt, ctx);
+    if (!object) return;
+    if (scene_.primitives() + object->primitives > limits_.primitives) {
+        diags_.error(stmt.keyword, "the scene has more than " + std::to_string(limits_.primitives) +
+                                       " primitives (the limit; a mesh counts its triangles)");
+        abort();
+        return;
+    }
+    scene_.add_object(std::move(*object), chain_);
+}
+
+}  // namespace wsd::lang

@@ -1,0 +1,132 @@
+// The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
+// expressions into values, and hands each block statement to lowering, collecting the scene in a
+// SceneBuilder. Errors go to Diagnostics; evaluation continues past independent errors and stops
+// at limits, failed includes and "too many errors".
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/lower.h"
+#include "lang/value.h"
+
+namespace wsd::lang {
+
+struct Limits {
+    uint64_t loop_iterations = 100'000'000;  // in total
+    size_t primitives = size_t(1) << 24;
+    int include_depth = 64;
+    // The parser limits nesting to 256; this guards the evaluator's own recursion whatever the
+    // AST (statements and expressions counted together).
+    int eval_depth = 600;
+};
+
+class Interpreter {
+public:
+    Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilder& scene, Limits limits = {});
+    ~Interpreter();
+
+    // Runs the main file of a scene (its file id is the scene's first include-cycle entry).
+    void run(const Program& program);
+    // Evaluates one expression in the current (top) scope.
+    std::optional<Value> evaluate(const Expr& expr);
+    // A binding of the file's top scope (for tests); nullopt if absent or failed.
+    std::optional<Value> lookup(std::string_view name) const;
+
+    bool aborted() const { return aborted_; }
+    bool camera_seen() const { return first_camera_.has_value(); }  // even one with errors
+    uint64_t iterations() const { return iterations_; }
+
+private:
+    struct Binding {
+        std::string_view name;
+        Span span;
+        std::optional<Value> value;  // empty: its definition failed (already reported)
+    };
+    struct Scope {
+        std::vector<Binding> bindings;
+        std::unordered_map<std::string_view, size_t> index;  // built once a scope grows large
+        const Binding* find(std::string_view name) const;
+        void clear();
+    };
+    // Counts statement and expression recursion together; past the limit evaluation stops with
+    // one error instead of overflowing the stack.
+    class DepthGuard {
+    public:
+        DepthGuard(Interpreter& in, Span at);
+        ~DepthGuard() { --in_.depth_; }
+        DepthGuard(const DepthGuard&) = delete;
+        DepthGuard& operator=(const DepthGuard&) = delete;
+        bool ok() const { return ok_; }
+
+    private:
+        Interpreter& in_;
+        bool ok_;
+    };
+
+    // statements
+    void exec_all(const std::vector<StmtPtr>& body);
+    void exec(const Stmt& stmt);
+    void exec_let(const Stmt& stmt);
+    void exec_for(const Stmt& stmt);
+    void exec_if(const Stmt& stmt);
+    void exec_include(const Stmt& stmt);
+    void exec_block(const Stmt& stmt);
+    bool run_loop_body(const Stmt& stmt, const Value& item);
+    bool take_iterations(double count, Span at);
+
+    // expressions
+    std::optional<Value> eval(const Expr& expr);
+    std::optional<Value> eval_ident(const Expr& expr);
+    std::optional<Value> eval_vector(const Expr& expr);
+    std::optional<Value> eval_list(const Expr& expr);
+    std::optional<Value> eval_unary(const Expr& expr);
+    std::optional<Value> eval_binary(const Expr& expr);
+    std::optional<Value> eval_logical(const Expr& expr);
+    std::optional<Value> eval_call(const Expr& expr);
+    std::optional<Value> eval_member(const Expr& expr);
+    std::optional<Value> eval_index(const Expr& expr);
+    std::optional<Value> arithmetic(const Expr& expr, const Value& a, const Value& b);
+    std::optional<Value> compare(const Expr& expr, const Value& a, const Value& b);
+
+    // scopes
+    void push_scope();
+    void pop_scope();
+    void bind(std::string_view name, Span span, std::optional<Value> value);
+    const Binding* find(std::string_view name) const;
+    std::vector<std::string> visible_names() const;
+    std::optional<MaterialPtr> default_material(Span keyword);
+
+    BlockContext context();
+    void abort() { aborted_ = true; }
+    bool stopped() const { return aborted_ || diags_.too_many(); }
+
+    SourceManager& sources_;
+    Diagnostics& diags_;
+    SceneBuilder& scene_;
+    Limits limits_;
+    std::vector<Scope> scopes_;  // scopes_[0..depth_) are live; the rest are reused storage
+    size_t scope_count_ = 0;
+    int depth_ = 0;
+    uint64_t iterations_ = 0;
+    bool aborted_ = false;
+    std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
+
+    // includes
+    IncludeChain chain_;
+    int include_depth_ = 0;
+    std::vector<std::string> include_stack_;      // canonical paths of the files being run
+    std::vector<uint32_t> include_stack_files_;   // their file ids (for the cycle message)
+    std::set<std::string> included_;              // canonical paths already run
+    std::vector<std::unique_ptr<Program>> programs_;  // included ASTs: bindings point into them
+    ObjCache obj_cache_;
+};
+
+}  // namespace wsd::lang

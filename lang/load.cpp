@@ -1,0 +1,67 @@
+// load_scene: the whole front end — parse, evaluate (which lowers each block as it runs), check
+// for a camera, apply the command line's adjustments, build the render scene and map its errors
+// back to spans — stopping after any stage that reported errors.
+#include "lang/load.h"
+
+#include <chrono>
+
+#include "lang/interpreter.h"
+#include "lang/lower.h"
+#include "lang/parser.h"
+
+namespace wsd::lang {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::optional<LoadedScene> load_scene(const std::string& path, std::string text, SourceManager& sources,
+                                      Diagnostics& diags, const LoadOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const size_t errors_before = diags.error_count();
+    const uint32_t file = sources.add(path, std::move(text));
+
+    LoweredScene lowered;
+    bool camera_seen = false, aborted = false;
+    {
+        // The AST and the interpreter (with everything they hold, such as packed vertex lists)
+        // are released before the render scene is built, to keep peak memory down.
+        Program program = parse(file, sources, diags);
+        if (diags.error_count() > errors_before) return std::nullopt;
+        SceneBuilder builder(file);
+        {
+            Interpreter interpreter(sources, diags, builder);
+            interpreter.run(program);
+            camera_seen = interpreter.camera_seen();
+            aborted = interpreter.aborted();
+        }
+        lowered = builder.finish();
+    }
+    if (!options.fragment && !camera_seen && !aborted && !diags.too_many())
+        diags.error(Span{file, 0, 0}, "missing camera: a scene needs one 'camera { ... }'");
+    if (diags.error_count() > errors_before) return std::nullopt;
+
+    LoadedScene loaded;
+    loaded.summary = lowered.summary;
+    if (options.adjust) options.adjust(lowered.spec);
+    loaded.parse_seconds = seconds_since(start);
+
+    if (options.build && !options.fragment) {
+        const auto build_start = std::chrono::steady_clock::now();
+        std::vector<render::SpecError> errors;
+        loaded.scene = render::build_scene(lowered.spec, errors, options.use_bvh, options.threads);
+        loaded.build_seconds = seconds_since(build_start);
+        if (!errors.empty()) report_spec_errors(errors, lowered, sources, diags);
+        if (!loaded.scene && diags.error_count() == errors_before)
+            diags.error(Span{file, 0, 0}, "the scene could not be built");
+        if (diags.error_count() > errors_before) return std::nullopt;
+    }
+    loaded.spec = std::move(lowered.spec);
+    return loaded;
+}
+
+}  // namespace wsd::lang

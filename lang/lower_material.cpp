@@ -1,0 +1,162 @@
+// Lowering of material and texture values: `material { ... }` (with `base` applied first and the
+// reflection + transmission <= 1 rule), `image "file"` (resolved relative to the file naming it),
+// `checker { ... }` and `perlin { ... }`.
+#include <cmath>
+
+#include "lang/lower.h"
+
+namespace wsd::lang {
+
+namespace {
+
+// The head of a block expression: from its first token to the end of its '{' (or the keyword
+// alone), so that messages underline `material {` rather than the whole block.
+Span head_span(const Expr& expr) {
+    Span s = expr.span;
+    if (expr.block && expr.block->open.end > s.begin && expr.block->open.end <= s.end &&
+        expr.block->open.file == s.file)
+        s.end = expr.block->open.end;
+    return s;
+}
+
+std::optional<render::PerlinKind> perlin_kind(std::string_view word) {
+    if (word == "noise") return render::PerlinKind::Noise;
+    if (word == "turbulence") return render::PerlinKind::Turbulence;
+    if (word == "marble") return render::PerlinKind::Marble;
+    if (word == "wood") return render::PerlinKind::Wood;
+    return std::nullopt;
+}
+
+void read_colors(const BlockReader& r, render::TextureSpec& spec) {
+    const std::vector<Value>& colors = r.values("colors");
+    if (colors.size() == 2) {
+        spec.color1 = colors[0].vec3();
+        spec.color2 = colors[1].vec3();
+    }
+}
+
+TexturePtr lower_image(const Expr& expr, BlockContext& ctx) {
+    if (expr.args.empty()) return nullptr;
+    const Expr& path_expr = *expr.args[0];
+    std::optional<Value> path = ctx.eval(path_expr);
+    if (!path) return nullptr;
+    if (!path->is(ValueType::String)) {
+        ctx.diags.error(path_expr.span, std::string("'image' needs a file name (a string), found ") + type_name(path->type()));
+        return nullptr;
+    }
+    if (path->string().empty()) {
+        ctx.diags.error(path_expr.span, "'image' file name is empty");
+        return nullptr;
+    }
+    auto t = std::make_shared<TextureValue>();
+    t->spec.kind = render::TextureKind::Image;
+    t->spec.image_path = resolve_path(ctx.sources, expr.span.file, path->string());
+    t->span = path_expr.span;
+    t->chain = ctx.chain;
+    return t;
+}
+
+TexturePtr lower_checker(const Expr& expr, BlockContext& ctx) {
+    BlockReader r(block_table("checker"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+    if (!r.ok()) return nullptr;
+    auto t = std::make_shared<TextureValue>();
+    t->spec.kind = render::TextureKind::Checker;
+    t->spec.checker_scale = r.number("scale", t->spec.checker_scale);
+    read_colors(r, t->spec);
+    t->span = head_span(expr);
+    t->chain = ctx.chain;
+    return t;
+}
+
+TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
+    BlockReader r(block_table("perlin"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+    auto t = std::make_shared<TextureValue>();
+    t->spec.kind = render::TextureKind::Perlin;
+    t->spec.perlin = perlin_kind(r.word("kind", "noise")).value_or(render::PerlinKind::Noise);
+    if (const Value* scale = r.value("scale")) {
+        if (scale->is(ValueType::Number)) {
+            if (scale->number() <= 0)
+                r.fail(r.value_span("scale"), "perlin 'scale' must be > 0, found " + describe(*scale));
+            t->spec.perlin_scale = glm::dvec3(scale->number());
+        } else {
+            glm::dvec3 v = scale->vec3();
+            if (v.x < 0 || v.y < 0 || v.z < 0 || v == glm::dvec3(0.0))
+                r.fail(r.value_span("scale"),
+                       "perlin 'scale' must have components >= 0, not all zero, found " + describe(*scale));
+            t->spec.perlin_scale = v;
+        }
+    }
+    t->spec.octaves = static_cast<int>(r.integer("octaves", t->spec.octaves));
+    read_colors(r, t->spec);
+    if (!r.ok()) return nullptr;
+    t->span = head_span(expr);
+    t->chain = ctx.chain;
+    return t;
+}
+
+}  // namespace
+
+TexturePtr lower_texture(const Expr& expr, BlockContext& ctx) {
+    switch (expr.kind) {
+    case ExprKind::Image: return lower_image(expr, ctx);
+    case ExprKind::Checker: return expr.block ? lower_checker(expr, ctx) : nullptr;
+    case ExprKind::Perlin: return expr.block ? lower_perlin(expr, ctx) : nullptr;
+    default: return nullptr;
+    }
+}
+
+MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
+    if (!expr.block) return nullptr;
+    BlockReader r(block_table("material"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+    auto m = std::make_shared<MaterialValue>();
+    m->span = head_span(expr);
+    m->chain = ctx.chain;
+    // `base` first, wherever it is written: the other properties override the copy.
+    const MaterialValue* base = r.value("base") ? r.value("base")->material().get() : nullptr;
+    if (base) {
+        m->spec = base->spec;
+        m->texture = base->texture;
+        m->bump = base->bump;
+    }
+    render::MaterialSpec& s = m->spec;
+    s.color = r.vec3("color", s.color);
+    if (const Value* tex = r.value("texture")) m->texture = tex->texture();
+    if (r.value("ambient")) s.ambient = r.number("ambient", 0);
+    s.diffuse = r.number("diffuse", s.diffuse);
+    s.specular = r.number("specular", s.specular);
+    s.shininess = r.number("shininess", s.shininess);
+    s.reflection = r.number("reflection", s.reflection);
+    s.transmission = r.number("transmission", s.transmission);
+    s.ior = r.number("ior", s.ior);
+    s.absorption = r.vec3("absorption", s.absorption);
+    s.bump_strength = r.number("bump_strength", s.bump_strength);
+    if (const Value* bump = r.value("bump")) {
+        if (bump->texture()->spec.kind != render::TextureKind::Perlin) {
+            const char* kind = bump->texture()->spec.kind == render::TextureKind::Image ? "an image" : "a checker";
+            r.fail(r.value_span("bump"), std::string("'bump' must be a perlin texture, found ") + kind + " texture");
+        }
+        m->bump = bump->texture();
+    }
+    if (r.ok() && s.reflection + s.transmission > 1) {
+        // At the later of the two as written; a value inherited from `base` counts as earlier.
+        bool has_r = r.has("reflection"), has_t = r.has("transmission");
+        std::string later = has_r && (!has_t || written_after(r, "reflection", "transmission"))
+                                ? "reflection" : "transmission";
+        std::string other = later == "reflection" ? "transmission" : "reflection";
+        Diagnostic& d = ctx.diags.error(r.value_span(later),
+                                        "'reflection' + 'transmission' must not exceed 1, found " +
+                                            format_number(s.reflection) + " + " + format_number(s.transmission));
+        Span other_span = r.has(other) ? r.value_span(other) : r.value_span("base");
+        d.notes.push_back({other_span, "'" + other + "' is " + format_number(other == "reflection" ? s.reflection : s.transmission) +
+                                           (r.has(other) ? " here" : ", from 'base'")});
+        r.failed();
+    }
+    if (!r.ok()) return nullptr;
+    if (m->texture) s.texture = m->texture->spec;
+    else s.texture.reset();
+    if (m->bump) s.bump = m->bump->spec;
+    else s.bump.reset();
+    return m;
+}
+
+}  // namespace wsd::lang

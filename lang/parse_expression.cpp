@@ -1,0 +1,390 @@
+// The recursive-descent parser, expressions: precedence climbing over the binary levels, unary
+// and postfix operators, primaries, vector literals (where '>' closes and a bare comparison needs
+// parentheses) and lists, with the packed fast path for lists of numeric vector literals.
+#include "lang/parser_internal.h"
+
+namespace wsd::lang::detail {
+
+namespace {
+
+struct BinaryInfo {
+    BinaryOp op;
+    int precedence;  // 0: not a binary operator
+};
+
+constexpr int comparison_precedence = 4;
+
+BinaryInfo binary_info(TokenKind k) {
+    switch (k) {
+    case TokenKind::OrOr: return {BinaryOp::Or, 1};
+    case TokenKind::AndAnd: return {BinaryOp::And, 2};
+    case TokenKind::EqEq: return {BinaryOp::Eq, 3};
+    case TokenKind::NotEq: return {BinaryOp::Ne, 3};
+    case TokenKind::Less: return {BinaryOp::Lt, 4};
+    case TokenKind::LessEq: return {BinaryOp::Le, 4};
+    case TokenKind::Greater: return {BinaryOp::Gt, 4};
+    case TokenKind::GreaterEq: return {BinaryOp::Ge, 4};
+    case TokenKind::Plus: return {BinaryOp::Add, 5};
+    case TokenKind::Minus: return {BinaryOp::Sub, 5};
+    case TokenKind::Star: return {BinaryOp::Mul, 6};
+    case TokenKind::Slash: return {BinaryOp::Div, 6};
+    case TokenKind::Percent: return {BinaryOp::Mod, 6};
+    default: return {BinaryOp::Add, 0};
+    }
+}
+
+}  // namespace
+
+// expression     = or_expr ;
+// or_expr        = and_expr { "||" and_expr } ;
+// and_expr       = equality { "&&" equality } ;
+// equality       = comparison { ( "==" | "!=" ) comparison } ;
+// comparison     = additive { ( "<" | "<=" | ">" | ">=" ) additive } ;
+// additive       = multiplicative { ( "+" | "-" ) multiplicative } ;
+// multiplicative = unary { ( "*" | "/" | "%" ) unary } ;
+// and inside a vector literal (component = v_or_expr):
+// v_or_expr  = v_and_expr { "||" v_and_expr } ;
+// v_and_expr = v_equality { "&&" v_equality } ;
+// v_equality = additive { ( "==" | "!=" ) additive } ;
+// One precedence-climbing loop for all levels: operands of an operator of precedence p are
+// parsed at p + 1, so a chain of any length uses constant stack.
+ExprPtr Parser::parse_binary(int min_precedence) {
+    ExprPtr left = parse_unary();
+    for (;;) {
+        const BinaryInfo info = binary_info(tok_.kind);
+        if (info.precedence == 0 || info.precedence < min_precedence) break;
+        if (in_vector_ && info.precedence == comparison_precedence) {
+            if (check(TokenKind::Greater) || check(TokenKind::GreaterEq)) break;  // closes the vector
+            const std::string op(lexeme(tok_));
+            if (Diagnostic* d = error_here("comparison '" + op + "' inside a vector literal needs parentheses"))
+                d->help.push_back("write the comparison in parentheses: <(a " + op + " b), ...>");
+        }
+        const Token op = tok_;
+        advance();
+        ExprPtr right = parse_binary(info.precedence + 1);
+        ExprPtr e = make(ExprKind::Binary, {file_, left->span.begin, right->span.end});
+        e->binary_op = info.op;
+        e->op_span = span_of(op);
+        e->args.push_back(std::move(left));
+        e->args.push_back(std::move(right));
+        left = std::move(e);
+    }
+    return left;
+}
+
+// unary = ( "-" | "!" ) unary | postfix ;
+ExprPtr Parser::parse_unary() {
+    const Token op = tok_;
+    if (!enter(op)) return bad_here();
+    ExprPtr result;
+    if (check(TokenKind::Minus) || check(TokenKind::Bang)) {
+        advance();
+        ExprPtr operand = parse_unary();
+        result = make(ExprKind::Unary, {file_, op.begin, operand->span.end});
+        result->unary_op = op.kind == TokenKind::Minus ? UnaryOp::Neg : UnaryOp::Not;
+        result->op_span = span_of(op);
+        result->args.push_back(std::move(operand));
+    } else {
+        result = parse_postfix();
+    }
+    leave();
+    return result;
+}
+
+// postfix = primary { "." IDENT | "[" expression "]" } ;
+ExprPtr Parser::parse_postfix() {
+    ExprPtr e = parse_primary();
+    while (!panic_) {
+        if (check(TokenKind::Dot)) {
+            advance();
+            if (!check(TokenKind::Ident)) {
+                error_here("expected a field name after '.', found " + found());
+                break;
+            }
+            ExprPtr m = make(ExprKind::Member, {file_, e->span.begin, tok_.end});
+            m->text = std::string(lexeme(tok_));
+            m->op_span = span_of(tok_);
+            m->args.push_back(std::move(e));
+            advance();
+            e = std::move(m);
+        } else if (check(TokenKind::LBracket)) {
+            const Token open = tok_;
+            advance();
+            const bool saved_vector = in_vector_;
+            in_vector_ = false;
+            ExprPtr index = parse_expression();
+            in_vector_ = saved_vector;
+            if (check(TokenKind::RBracket)) {
+                advance();
+            } else {
+                unclosed(open, "expected ']' after the index, found " + found());
+            }
+            ExprPtr ix = make(ExprKind::Index, span_from(e->span.begin));
+            ix->op_span = span_of(open);
+            ix->args.push_back(std::move(e));
+            ix->args.push_back(std::move(index));
+            e = std::move(ix);
+        } else {
+            break;
+        }
+    }
+    return e;
+}
+
+// primary = NUMBER | STRING | "true" | "false" | IDENT [ "(" [ expression { "," expression } ] ")" ]
+//         | "(" expression ")" | vector | list | "material" block | "image" expression
+//         | "checker" block | "perlin" block ;
+ExprPtr Parser::parse_primary() {
+    const Token t = tok_;
+    switch (t.kind) {
+    case TokenKind::Number: {
+        advance();
+        ExprPtr e = make(ExprKind::Number, span_of(t));
+        e->number = t.number;
+        return e;
+    }
+    case TokenKind::String: {
+        advance();
+        ExprPtr e = make(ExprKind::String, span_of(t));
+        e->text = decode_string(lexeme(t));
+        return e;
+    }
+    case TokenKind::True:
+    case TokenKind::False: {
+        advance();
+        ExprPtr e = make(ExprKind::Bool, span_of(t));
+        e->boolean = t.kind == TokenKind::True;
+        return e;
+    }
+    case TokenKind::Ident: {
+        advance();
+        if (check(TokenKind::LParen)) return parse_call(t);
+        ExprPtr e = make(ExprKind::Ident, span_of(t));
+        e->text = std::string(lexeme(t));
+        return e;
+    }
+    case TokenKind::LParen: return parse_group();
+    case TokenKind::Less: return parse_vector();
+    case TokenKind::LBracket: return parse_list();
+    case TokenKind::Material: return parse_block_expr(ExprKind::Material, "material");
+    case TokenKind::Checker: return parse_block_expr(ExprKind::Checker, "checker");
+    case TokenKind::Perlin: return parse_block_expr(ExprKind::Perlin, "perlin");
+    case TokenKind::Image: {
+        advance();
+        ExprPtr path = parse_expression();
+        ExprPtr e = make(ExprKind::Image, {file_, t.begin, path->span.end});
+        e->args.push_back(std::move(path));
+        return e;
+    }
+    default:
+        error_here("expected an expression, found " + found());
+        return bad_here();
+    }
+}
+
+// IDENT "(" [ expression { "," expression } ] ")"   (the call form of primary)
+ExprPtr Parser::parse_call(const Token& name) {
+    ExprPtr e = make(ExprKind::Call, {});
+    e->text = std::string(lexeme(name));
+    e->op_span = span_of(name);
+    const Token open = tok_;
+    advance();
+    const bool saved_vector = in_vector_;
+    in_vector_ = false;
+    if (!check(TokenKind::RParen)) {
+        for (;;) {
+            e->args.push_back(parse_expression());
+            if (panic_) break;
+            if (check(TokenKind::Comma)) {
+                advance();
+                continue;
+            }
+            if (!check(TokenKind::RParen))
+                unclosed(open, "expected ',' or ')' in the call to '" + e->text + "', found " + found());
+            break;
+        }
+    }
+    in_vector_ = saved_vector;
+    if (check(TokenKind::RParen)) advance();
+    e->span = span_from(name.begin);
+    return e;
+}
+
+// "(" expression ")"   (the parenthesized form of primary; the node's span covers the parentheses)
+ExprPtr Parser::parse_group() {
+    const Token open = tok_;
+    advance();
+    const bool saved_vector = in_vector_;
+    in_vector_ = false;
+    ExprPtr e = parse_expression();
+    in_vector_ = saved_vector;
+    if (check(TokenKind::RParen)) {
+        advance();
+        e->span = span_from(open.begin);
+    } else {
+        unclosed(open, "expected ')', found " + found());
+    }
+    return e;
+}
+
+// vector    = "<" component "," component [ "," component ] ">" ;
+// component = v_or_expr ;
+ExprPtr Parser::parse_vector() {
+    const Token open = tok_;
+    advance();
+    ExprPtr e = make(ExprKind::Vector, {});
+    const bool saved_vector = in_vector_;
+    in_vector_ = true;
+    for (;;) {
+        e->args.push_back(parse_expression());
+        if (panic_) break;
+        const bool closing = check(TokenKind::Greater) || check(TokenKind::GreaterEq);
+        if (check(TokenKind::Comma) && e->args.size() < 3) {
+            const Token comma = tok_;
+            advance();
+            if (check(TokenKind::Greater) || check(TokenKind::GreaterEq)) {
+                error(span_of(comma), "trailing comma in a vector literal");
+                close_vector();
+                break;
+            }
+            continue;
+        }
+        if (closing) {
+            close_vector();
+            if (e->args.size() < 2)
+                error(span_from(open.begin), "a vector literal needs 2 or 3 components, found 1");
+            break;
+        }
+        if (e->args.size() == 3) {
+            if (Diagnostic* d = error_here("expected '>' to close the vector, found " + found())) {
+                d->notes.push_back({span_of(open), "to match this '<'"});
+                d->help.push_back("a vector literal has 2 or 3 components");
+            }
+        } else {
+            unclosed(open, std::string(e->args.size() == 1 ? "expected ','" : "expected ',' or '>'") +
+                               " after a vector component, found " + found());
+        }
+        break;
+    }
+    in_vector_ = saved_vector;
+    e->span = span_from(open.begin);
+    return e;
+}
+
+// A vector literal's closing '>'. When the lexer read `>=` there, only the '>' is taken and the
+// rest is lexed again: `<1,2,3>==v` is the vector, `==`, v.
+void Parser::close_vector() {
+    const Token closer = tok_;
+    if (check(TokenKind::Greater)) {
+        advance();
+        return;
+    }
+    prev_ = {TokenKind::Greater, closer.begin, closer.begin + 1, 0};
+    has_peek_ = false;
+    lexer_.reset(closer.begin + 1);
+    tok_ = lexer_.next();
+    if (check(TokenKind::Assign)) {
+        if (Diagnostic* d = error(span_of(closer), "comparison '>=' inside a vector literal needs parentheses"))
+            d->help.push_back("at a vector literal's own level '>' closes it; write <(a >= b), ...>");
+    }
+}
+
+// list = "[" [ expression { "," expression } [ "," ] ] "]" ;
+ExprPtr Parser::parse_list() {
+    const Token open = tok_;
+    advance();
+    if (check(TokenKind::Less) && !has_peek_) {
+        if (ExprPtr packed = try_packed_list(open)) return packed;
+    }
+    ExprPtr e = make(ExprKind::List, {});
+    const bool saved_vector = in_vector_;
+    in_vector_ = false;
+    while (!check(TokenKind::RBracket)) {
+        if (!starts_expression(tok_.kind)) {
+            unclosed(open, "expected a list element or ']', found " + found());
+            break;
+        }
+        e->args.push_back(parse_expression());
+        if (panic_) break;
+        if (check(TokenKind::Comma)) {
+            advance();
+            continue;
+        }
+        if (!check(TokenKind::RBracket)) unclosed(open, "expected ',' or ']' in the list, found " + found());
+        break;
+    }
+    in_vector_ = saved_vector;
+    if (check(TokenKind::RBracket)) advance();
+    e->span = span_from(open.begin);
+    return e;
+}
+
+// The packed form of list: `[<1, 2, 3>, <-4, 5, 6>, ...]` becomes numbers plus element offsets,
+// with no Expr per element, so a million-triangle inline mesh stays small. At the first element
+// that is not such a literal the attempt is abandoned and the list re-read from its '[' (the
+// lexer does not repeat its errors), so the result is always what the generic list would mean.
+ExprPtr Parser::try_packed_list(const Token& open) {
+    const Token restart = tok_;
+    const Token restart_prev = prev_;
+    const uint32_t restart_pos = lexer_.position();
+    auto packed = std::make_shared<PackedVectors>();
+    packed->file = file_;
+    size_t dims = 0;
+    while (check(TokenKind::Less)) {
+        const uint32_t offset = tok_.begin;
+        advance();
+        double v[3] = {0, 0, 0};
+        size_t n = 0;
+        bool closed = false;
+        while (n < 3) {
+            const bool negative = check(TokenKind::Minus);
+            if (negative) advance();
+            if (!check(TokenKind::Number)) break;
+            v[n++] = negative ? -tok_.number : tok_.number;
+            advance();
+            if (check(TokenKind::Comma)) {
+                advance();
+                continue;
+            }
+            closed = check(TokenKind::Greater);
+            break;
+        }
+        if (!closed || n < 2 || (dims != 0 && n != dims)) break;
+        advance();
+        dims = n;
+        packed->values.insert(packed->values.end(), v, v + n);
+        packed->offsets.push_back(offset);
+        if (check(TokenKind::Comma)) {
+            advance();
+            if (check(TokenKind::Less)) continue;
+        }
+        if (!check(TokenKind::RBracket)) break;
+        advance();
+        packed->dims = static_cast<int>(dims);
+        ExprPtr e = make(ExprKind::PackedList, span_from(open.begin));
+        e->packed = std::move(packed);
+        return e;
+    }
+    tok_ = restart;
+    prev_ = restart_prev;
+    has_peek_ = false;
+    lexer_.reset(restart_pos);
+    return nullptr;
+}
+
+// "material" block | "checker" block | "perlin" block   (the block forms of primary)
+ExprPtr Parser::parse_block_expr(ExprKind kind, const char* what) {
+    const Token keyword = tok_;
+    advance();
+    ExprPtr e = make(kind, {});
+    e->block = std::make_unique<Block>();
+    if (check(TokenKind::LBrace)) {
+        parse_block(*e->block, std::string(what) + " block", false);
+    } else {
+        error_here("expected '{' after '" + std::string(what) + "', found " + found());
+    }
+    e->span = span_from(keyword.begin);
+    return e;
+}
+
+}  // namespace wsd::lang::detail

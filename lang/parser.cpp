@@ -1,0 +1,435 @@
+// The recursive-descent parser, statements and blocks: one function per production of
+// grammar/wsd.ebnf (quoted above it), panic-mode recovery (an error silences further errors until
+// the parser resynchronizes at the next statement), and a nesting counter instead of a deep
+// stack. Expressions, vectors and lists are in parse_expression.cpp.
+#include <limits>
+
+#include "lang/parser_internal.h"
+
+namespace wsd::lang {
+
+namespace detail {
+
+namespace {
+
+const std::vector<std::string> statement_words = {
+    "let", "for", "if", "include", "settings", "camera", "light",
+    "sphere", "box", "triangle", "plane", "mesh"};
+
+}  // namespace
+
+Diagnostic* Parser::error(Span span, std::string message) {
+    if (panic_ || bailed_) return nullptr;
+    panic_ = true;
+    Diagnostic* d = &diags_.error(span, std::move(message));
+    if (diags_.too_many()) bail();
+    return d;
+}
+
+void Parser::unclosed(const Token& opener, std::string message) {
+    if (Diagnostic* d = error_here(std::move(message)))
+        d->notes.push_back({span_of(opener), "to match this '" + std::string(lexeme(opener)) + "'"});
+}
+
+bool Parser::enter(const Token& at) {
+    if (bailed_) return false;
+    if (++depth_ <= max_nesting) return true;
+    --depth_;
+    error(span_of(at), "nesting too deep (the limit is " + std::to_string(max_nesting) +
+                           " nested blocks and expressions)");
+    bail();
+    return false;
+}
+
+void Parser::bail() {
+    bailed_ = true;
+    has_peek_ = false;
+    const auto end = static_cast<uint32_t>(text_.size());
+    tok_ = {TokenKind::Eof, end, end, 0};
+}
+
+// Panic mode ends at the next statement keyword or at the `}` closing the enclosing body,
+// skipping balanced braces in between. At the top level there is no enclosing body: a stray `}`
+// is skipped with the rest, so `}}}` is one error.
+void Parser::synchronize(bool top_level) {
+    int depth = 0;
+    while (!check(TokenKind::Eof)) {
+        if (depth == 0 && is_statement_keyword(tok_.kind)) break;
+        if (check(TokenKind::LBrace)) {
+            ++depth;
+        } else if (check(TokenKind::RBrace)) {
+            if (depth == 0 && !top_level) break;
+            if (depth > 0) --depth;
+        }
+        advance();
+    }
+    panic_ = false;
+}
+
+// After an error inside a block: skip to its closing `}` (consumed: true), or stop before a
+// statement keyword or the end of the file (false).
+bool Parser::recover_in_block() {
+    int depth = 0;
+    while (!check(TokenKind::Eof)) {
+        if (depth == 0 && is_statement_keyword(tok_.kind)) return false;
+        if (check(TokenKind::LBrace)) {
+            ++depth;
+        } else if (check(TokenKind::RBrace)) {
+            if (depth == 0) {
+                advance();
+                return true;
+            }
+            --depth;
+        }
+        advance();
+    }
+    return false;
+}
+
+// program = { statement } EOF ;
+Program Parser::parse_program() {
+    Program program;
+    program.file = file_;
+    if (text_.size() >= std::numeric_limits<uint32_t>::max()) {
+        diags_.error({file_, 0, 0}, "file is too large (the limit is 4 GiB)");
+        return program;
+    }
+    program.statements = parse_statements(true);
+    return program;
+}
+
+std::vector<StmtPtr> Parser::parse_statements(bool top_level) {
+    std::vector<StmtPtr> statements;
+    while (!check(TokenKind::Eof)) {
+        if (check(TokenKind::RBrace)) {
+            if (!top_level) break;
+            error_here("unexpected '}' with no open block");
+            advance();
+        } else if (StmtPtr s = parse_statement()) {
+            statements.push_back(std::move(s));
+        }
+        if (panic_) synchronize(top_level);
+    }
+    return statements;
+}
+
+// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt ;
+StmtPtr Parser::parse_statement() {
+    switch (tok_.kind) {
+    case TokenKind::Let: return parse_let();
+    case TokenKind::For: return parse_for();
+    case TokenKind::If: return parse_if();
+    case TokenKind::Include: return parse_include();
+    case TokenKind::Settings: case TokenKind::Camera: case TokenKind::Light:
+    case TokenKind::Sphere: case TokenKind::Box: case TokenKind::Triangle:
+    case TokenKind::Plane: case TokenKind::Mesh:
+        return parse_object();
+    default: break;
+    }
+    auto bad = std::make_unique<Stmt>();
+    bad->kind = StmtKind::Bad;
+    bad->span = bad->keyword = span_of(tok_);
+    if (check(TokenKind::Else)) {
+        error_here("'else' without a matching 'if'");
+    } else {
+        // `x = 3`: a look at the raw text, not the lexer, so that no lexical error is reported
+        // ahead of this one.
+        std::string help;
+        if (check(TokenKind::Ident)) {
+            const std::string word(lexeme(tok_));
+            size_t p = tok_.end;
+            while (p < text_.size() && (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\r' || text_[p] == '\n')) ++p;
+            const bool assign = p < text_.size() && text_[p] == '=' && (p + 1 == text_.size() || text_[p + 1] != '=');
+            const std::string match = closest_match(word, statement_words);
+            if (assign)
+                help = "to bind a name, write 'let " + word + " = ...'";
+            else if (!match.empty())
+                help = "did you mean '" + match + "'?";
+        }
+        if (Diagnostic* d = error_here("expected a statement, found " + found()); d && !help.empty())
+            d->help.push_back(help);
+    }
+    advance();
+    return bad;
+}
+
+bool Parser::parse_name(std::string& name, Span& span, const char* after) {
+    // `for in xs`: the name is missing, not spelled `in`.
+    const bool keyword = tok_.kind >= TokenKind::Let && tok_.kind <= TokenKind::False && !check(TokenKind::In);
+    if (check(TokenKind::Ident) || keyword) {
+        if (!check(TokenKind::Ident)) {
+            // A reserved word in a name's place: report it and read it as the name, so the rest
+            // of the statement parses normally.
+            const std::string word(lexeme(tok_));
+            if (Diagnostic* d = error_here("expected a name after '" + std::string(after) + "', found keyword '" + word + "'"))
+                d->help.push_back("'" + word + "' is a reserved word; choose another name");
+            panic_ = false;
+        }
+        name = std::string(lexeme(tok_));
+        span = span_of(tok_);
+        advance();
+        return true;
+    }
+    error_here("expected a name after '" + std::string(after) + "', found " + found());
+    return false;
+}
+
+// let_stmt = "let" IDENT "=" expression ;
+StmtPtr Parser::parse_let() {
+    auto s = std::make_unique<Stmt>();
+    s->kind = StmtKind::Let;
+    s->keyword = span_of(tok_);
+    advance();
+    if (parse_name(s->name, s->name_span, "let")) {
+        if (check(TokenKind::Assign)) {
+            advance();
+            s->value = parse_expression();
+        } else {
+            error_here("expected '=' after 'let " + s->name + "', found " + found());
+        }
+    }
+    if (!s->value) s->value = bad_here();
+    s->span = span_from(s->keyword.begin);
+    return s;
+}
+
+// for_stmt = "for" IDENT "in" expression [ ".." expression ] body ;
+StmtPtr Parser::parse_for() {
+    auto s = std::make_unique<Stmt>();
+    s->kind = StmtKind::For;
+    s->keyword = span_of(tok_);
+    advance();
+    if (parse_name(s->name, s->name_span, "for")) {
+        if (check(TokenKind::In)) {
+            advance();
+            s->value = parse_expression();
+            if (check(TokenKind::DotDot)) {
+                advance();
+                s->range_end = parse_expression();
+            }
+            if (!panic_) s->body = parse_body("for body");
+        } else {
+            error_here("expected 'in' after 'for " + s->name + "', found " + found());
+        }
+    }
+    if (!s->value) s->value = bad_here();
+    s->span = span_from(s->keyword.begin);
+    return s;
+}
+
+// if_stmt = "if" expression body { "else" "if" expression body } [ "else" body ] ;
+StmtPtr Parser::parse_if() {
+    auto s = std::make_unique<Stmt>();
+    s->kind = StmtKind::If;
+    s->keyword = span_of(tok_);
+    IfBranch first;
+    first.keyword = s->keyword;
+    advance();
+    first.condition = parse_expression();
+    if (!panic_) first.body = parse_body("if body");
+    s->branches.push_back(std::move(first));
+    while (!panic_ && check(TokenKind::Else)) {
+        IfBranch branch;
+        branch.keyword = span_of(tok_);
+        advance();
+        if (check(TokenKind::If)) {
+            advance();
+            branch.condition = parse_expression();
+            if (!panic_) branch.body = parse_body("if body");
+            s->branches.push_back(std::move(branch));
+        } else {
+            branch.body = parse_body("else body");
+            s->branches.push_back(std::move(branch));
+            break;
+        }
+    }
+    s->span = span_from(s->keyword.begin);
+    return s;
+}
+
+// include_stmt = "include" STRING ;
+StmtPtr Parser::parse_include() {
+    auto s = std::make_unique<Stmt>();
+    s->kind = StmtKind::Include;
+    s->keyword = span_of(tok_);
+    advance();
+    if (check(TokenKind::String)) {
+        s->name = decode_string(lexeme(tok_));
+        s->name_span = span_of(tok_);
+        advance();
+    } else {
+        error_here("expected a file name string after 'include', found " + found());
+    }
+    s->span = span_from(s->keyword.begin);
+    return s;
+}
+
+// body = "{" { statement } "}" ;
+std::vector<StmtPtr> Parser::parse_body(const char* what) {
+    std::vector<StmtPtr> statements;
+    if (!check(TokenKind::LBrace)) {
+        error_here("expected '{' to start the " + std::string(what) + ", found " + found());
+        return statements;
+    }
+    const Token open = tok_;
+    if (!enter(open)) return statements;
+    advance();
+    statements = parse_statements(false);
+    if (check(TokenKind::RBrace)) {
+        advance();
+    } else {
+        unclosed(open, "expected '}' to close the " + std::string(what) + ", found " + found());
+    }
+    leave();
+    return statements;
+}
+
+// object_stmt    = object_keyword block | "light" IDENT block | "triangle" triangle_block ;
+// object_keyword = "settings" | "camera" | "sphere" | "box" | "plane" | "mesh" ;
+StmtPtr Parser::parse_object() {
+    auto s = std::make_unique<Stmt>();
+    s->kind = StmtKind::Block;
+    s->keyword = span_of(tok_);
+    const TokenKind kind = tok_.kind;
+    const std::string word(lexeme(tok_));
+    switch (kind) {
+    case TokenKind::Settings: s->block_kind = BlockKind::Settings; break;
+    case TokenKind::Camera: s->block_kind = BlockKind::Camera; break;
+    case TokenKind::Light: s->block_kind = BlockKind::Light; break;
+    case TokenKind::Sphere: s->block_kind = BlockKind::Sphere; break;
+    case TokenKind::Box: s->block_kind = BlockKind::Box; break;
+    case TokenKind::Triangle: s->block_kind = BlockKind::Triangle; break;
+    case TokenKind::Plane: s->block_kind = BlockKind::Plane; break;
+    default: s->block_kind = BlockKind::Mesh; break;
+    }
+    advance();
+    if (kind == TokenKind::Light) {
+        if (check(TokenKind::Ident)) {
+            s->name = std::string(lexeme(tok_));
+            s->name_span = span_of(tok_);
+            advance();
+        } else {
+            error_here("expected the light kind (point or area) after 'light', found " + found());
+            // With the block right there, read it anyway: its own errors are still worth having.
+            if (check(TokenKind::LBrace)) panic_ = false;
+        }
+    }
+    if (!panic_) {
+        if (check(TokenKind::LBrace)) {
+            // A statement whose block recovered at its own `}` ended cleanly: the next statement
+            // is parsed normally, with its own errors.
+            if (parse_block(s->block, word + " block", kind == TokenKind::Triangle)) panic_ = false;
+        } else {
+            error_here("expected '{' after '" + (kind == TokenKind::Light && !s->name.empty() ? "light " + s->name : word) +
+                       "', found " + found());
+        }
+    }
+    s->span = span_from(s->keyword.begin);
+    return s;
+}
+
+// block          = "{" { item } "}" ;
+// triangle_block = "{" [ value_list ] { item } "}" ;
+bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
+    const Token open = tok_;
+    block.open = span_of(open);
+    block.close = span_of(open);
+    if (!enter(open)) return false;
+    bool closed = false;
+    advance();
+    const bool saved_vector = in_vector_;
+    in_vector_ = false;
+    if (triangle && starts_vertex_list()) {
+        Item& vertices = block.items.emplace_back();
+        vertices.name_span = {file_, tok_.begin, tok_.begin};
+        parse_value_list(vertices.values, "");
+    }
+    for (;;) {
+        if (panic_) {
+            closed = recover_in_block();
+            if (closed) block.close = span_of(prev_);
+            break;
+        }
+        if (check(TokenKind::RBrace)) {
+            block.close = span_of(tok_);
+            advance();
+            closed = true;
+            break;
+        }
+        if (check(TokenKind::Eof) || is_statement_keyword(tok_.kind)) {
+            block.close = {file_, tok_.begin, tok_.begin};
+            unclosed(open, "expected '}' to close " + what + ", found " + found());
+            break;
+        }
+        if (check(TokenKind::Ident) || check(TokenKind::Material)) {
+            parse_item(block);
+        } else {
+            error_here("expected a property name or '}' in " + what + ", found " + found());
+        }
+    }
+    in_vector_ = saved_vector;
+    leave();
+    return closed;
+}
+
+// The lookahead rule of triangle_block (see the grammar): does the block start with vertices?
+bool Parser::starts_vertex_list() {
+    if (!starts_expression(tok_.kind)) return false;
+    if (!check(TokenKind::Ident) && !check(TokenKind::Material)) return true;
+    switch (peek().kind) {
+    case TokenKind::Number: case TokenKind::String: case TokenKind::Ident:
+    case TokenKind::True: case TokenKind::False: case TokenKind::Less:
+    case TokenKind::Bang: case TokenKind::Material: case TokenKind::Image:
+    case TokenKind::Checker: case TokenKind::Perlin:
+        return false;
+    case TokenKind::LBrace:
+        return !check(TokenKind::Material);
+    default:
+        return true;
+    }
+}
+
+// item          = "material" block | property_name value_list ;
+// property_name = IDENT | "material" ;
+void Parser::parse_item(Block& block) {
+    Item& item = block.items.emplace_back();
+    item.name = std::string(lexeme(tok_));
+    item.name_span = span_of(tok_);
+    const bool material = check(TokenKind::Material);
+    advance();
+    if (material && check(TokenKind::LBrace)) {
+        const uint32_t begin = tok_.begin;
+        ExprPtr e = make(ExprKind::Material, {});
+        e->block = std::make_unique<Block>();
+        parse_block(*e->block, "material block", false);
+        e->span = span_from(begin);
+        item.values.push_back(std::move(e));
+        return;
+    }
+    parse_value_list(item.values, item.name);
+}
+
+// value_list = expression { "," expression } ;
+void Parser::parse_value_list(std::vector<ExprPtr>& values, const std::string& item) {
+    if (!starts_expression(tok_.kind)) {
+        if (item.empty())
+            error_here("expected a value, found " + found());
+        else
+            error_here("expected a value for '" + item + "', found " + found());
+        values.push_back(bad_here());
+        return;
+    }
+    values.push_back(parse_expression());
+    while (!panic_ && check(TokenKind::Comma)) {
+        advance();
+        values.push_back(parse_expression());
+    }
+}
+
+}  // namespace detail
+
+Program parse(uint32_t file, const SourceManager& sources, Diagnostics& diags) {
+    return detail::Parser(file, sources, diags).parse_program();
+}
+
+}  // namespace wsd::lang

@@ -1,0 +1,121 @@
+// Internal to the parser (lang/parser.cpp: statements and blocks; lang/parse_expression.cpp:
+// expressions, vectors and lists): the Parser class, its token helpers and its recovery state.
+// Not part of the front end's interface; include lang/parser.h instead.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "lang/lexer.h"
+#include "lang/parser.h"
+
+namespace wsd::lang::detail {
+
+inline bool starts_expression(TokenKind k) {
+    switch (k) {
+    case TokenKind::Number: case TokenKind::String: case TokenKind::Ident:
+    case TokenKind::True: case TokenKind::False: case TokenKind::LParen:
+    case TokenKind::LBracket: case TokenKind::Less: case TokenKind::Minus:
+    case TokenKind::Bang: case TokenKind::Material: case TokenKind::Image:
+    case TokenKind::Checker: case TokenKind::Perlin:
+        return true;
+    default:
+        return false;
+    }
+}
+
+class Parser {
+public:
+    Parser(uint32_t file, const SourceManager& sources, Diagnostics& diags)
+        : file_(file), text_(sources.file(file).text), diags_(diags), lexer_(file, text_, &diags) {
+        tok_ = lexer_.next();
+    }
+
+    Program parse_program();
+
+private:
+    // ---- tokens ----
+    void advance() {
+        prev_ = tok_;
+        if (bailed_) return;  // tok_ stays at the end of the file
+        if (has_peek_) {
+            tok_ = peek_;
+            has_peek_ = false;
+        } else {
+            tok_ = lexer_.next();
+        }
+    }
+    const Token& peek() {
+        if (!has_peek_) {
+            peek_ = lexer_.next();
+            has_peek_ = true;
+        }
+        return peek_;
+    }
+    bool check(TokenKind k) const { return tok_.kind == k; }
+    Span span_of(const Token& t) const { return {file_, t.begin, t.end}; }
+    Span span_from(uint32_t begin) const { return {file_, begin, std::max(begin, prev_.end)}; }
+    std::string found() const { return describe_token(tok_, text_); }
+    std::string_view lexeme(const Token& t) const { return text_.substr(t.begin, t.end - t.begin); }
+
+    // ---- errors ----
+    Diagnostic* error(Span span, std::string message);
+    Diagnostic* error_here(std::string message) { return error(span_of(tok_), std::move(message)); }
+    void unclosed(const Token& opener, std::string message);
+    bool enter(const Token& at);  // nesting guard; false after the limit (the parse stops)
+    void leave() { --depth_; }
+    void bail();
+    void synchronize(bool top_level);
+    bool recover_in_block();
+
+    // ---- statements ----
+    std::vector<StmtPtr> parse_statements(bool top_level);
+    StmtPtr parse_statement();
+    StmtPtr parse_let();
+    StmtPtr parse_for();
+    StmtPtr parse_if();
+    StmtPtr parse_include();
+    StmtPtr parse_object();
+    std::vector<StmtPtr> parse_body(const char* what);
+    bool parse_name(std::string& name, Span& span, const char* after);
+
+    // ---- blocks ----
+    bool parse_block(Block& block, const std::string& what, bool triangle);  // true: '}' consumed
+    bool starts_vertex_list();
+    void parse_item(Block& block);
+    void parse_value_list(std::vector<ExprPtr>& values, const std::string& item);
+
+    // ---- expressions ----
+    ExprPtr parse_expression() { return parse_binary(1); }
+    ExprPtr parse_binary(int min_precedence);
+    ExprPtr parse_unary();
+    ExprPtr parse_postfix();
+    ExprPtr parse_primary();
+    ExprPtr parse_call(const Token& name);
+    ExprPtr parse_group();
+    ExprPtr parse_vector();
+    ExprPtr parse_list();
+    ExprPtr try_packed_list(const Token& open);
+    ExprPtr parse_block_expr(ExprKind kind, const char* what);
+    void close_vector();
+    ExprPtr make(ExprKind kind, Span span) {
+        auto e = std::make_unique<Expr>();
+        e->kind = kind;
+        e->span = span;
+        return e;
+    }
+    ExprPtr bad_here() { return make(ExprKind::Bad, {file_, tok_.begin, tok_.begin}); }
+
+    uint32_t file_;
+    std::string_view text_;
+    Diagnostics& diags_;
+    Lexer lexer_;
+    Token tok_, prev_, peek_;
+    bool has_peek_ = false;
+    bool panic_ = false;   // an error was reported; stay quiet until resynchronized
+    bool bailed_ = false;  // nesting limit or too many errors: the parse winds down
+    bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
+    int depth_ = 0;
+};
+
+}  // namespace wsd::lang::detail

@@ -1,0 +1,135 @@
+// Property tables and the generic block reader: every block (settings, camera, lights, objects,
+// material, checker, perlin) is checked against its table here — unknown names with a "did you
+// mean", repeats with a note at the first, value counts, types and ranges — and its transforms
+// (scale, rotate, translate) are collected in the order written.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "lang/ast.h"
+#include "lang/diagnostics.h"
+#include "lang/value.h"
+
+namespace wsd::lang {
+
+enum class PropType {
+    Number,
+    Integer,   // a number with an integral value
+    Bool,
+    String,
+    Vector2,
+    Vector3,
+    Colour,    // a vector3 with components >= 0
+    Material,
+    Texture,
+    List,
+    Word,      // a bare identifier from `words`, read without evaluating it
+    NumberOrVector3,
+};
+
+struct Range {
+    double lo = -std::numeric_limits<double>::infinity();
+    double hi = std::numeric_limits<double>::infinity();
+    bool lo_open = false, hi_open = false;
+    bool contains(double x) const {
+        return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+    }
+    bool unbounded() const { return lo == -hi && hi == std::numeric_limits<double>::infinity(); }
+    std::string describe() const;  // "> 0", "in [0, 1)", ">= 0"
+};
+
+constexpr Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, false}; }
+constexpr Range above(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), true, false}; }
+constexpr Range between(double lo, double hi) { return Range{lo, hi, false, false}; }
+
+struct Property {
+    std::string_view name;  // "" is a triangle's leading vertices
+    PropType type;
+    Range range = {};
+    int min_values = 1, max_values = 1;
+    std::vector<std::string_view> words = {};  // Word
+};
+
+struct BlockTable {
+    std::string what;  // "sphere", "light area", "material": used in messages
+    std::vector<Property> properties;
+    bool transforms = false;  // accepts scale / rotate / translate
+    // Help for names that are unknown here but mean something elsewhere (`samples` in a point light).
+    std::vector<std::pair<std::string_view, std::string>> hints = {};
+    const Property* find(std::string_view name) const;
+};
+
+enum class TransformKind { Scale, Rotate, Translate };
+struct Transform {
+    TransformKind kind;
+    glm::dvec3 v;  // scale factors, rotation degrees or offset
+    Span span;
+};
+
+using EvalFn = std::function<std::optional<Value>(const Expr&)>;
+
+// Reads one block against its table at construction, reporting every problem it finds. A value
+// that failed to evaluate (already reported) marks the block failed without another message.
+class BlockReader {
+public:
+    BlockReader(const BlockTable& table, const Block& block, Span keyword, Diagnostics& diags,
+                const EvalFn& eval);
+
+    bool ok() const { return ok_; }
+    bool has(std::string_view name) const { return slot(name) && slot(name)->item; }
+    // Validated values of a present, valid property (empty otherwise).
+    const std::vector<Value>& values(std::string_view name) const;
+    const Value* value(std::string_view name) const;  // the first value, or null
+    Span value_span(std::string_view name, size_t i = 0) const;  // the value expression's span
+    Span name_span(std::string_view name) const;
+
+    double number(std::string_view name, double fallback) const;
+    long long integer(std::string_view name, long long fallback) const;
+    bool boolean(std::string_view name, bool fallback) const;
+    glm::dvec3 vec3(std::string_view name, glm::dvec3 fallback) const;
+    std::string_view word(std::string_view name, std::string_view fallback) const;
+
+    // Reports "missing property" at the keyword unless present (or present but failed).
+    bool require(std::string_view name);
+    void fail(Span span, std::string message);  // report an error and mark the block failed
+    void failed() { ok_ = false; }                // a problem already reported elsewhere
+    const std::vector<Transform>& transforms() const { return transforms_; }
+    Span keyword() const { return keyword_; }
+    const BlockTable& table() const { return table_; }
+    Diagnostics& diags() { return diags_; }
+
+private:
+    struct Slot {
+        const Item* item = nullptr;
+        bool valid = false;
+        std::vector<Value> values;
+    };
+    const Slot* slot(std::string_view name) const;
+    void read_item(const Item& item);
+    void read_transform(const Item& item);
+    bool check_count(const Property& p, const Item& item);
+    std::optional<Value> read_value(const Property& p, const Expr& expr);
+    bool check_value(const Property& p, const Value& v, const Expr& expr);
+
+    const BlockTable& table_;
+    Span keyword_;
+    Diagnostics& diags_;
+    const EvalFn& eval_;
+    std::vector<Slot> slots_;  // parallel to table_.properties
+    std::vector<Transform> transforms_;
+    bool ok_ = true;
+};
+
+// Whether property `a` is written after property `b` in the block (by source position).
+inline bool written_after(const BlockReader& r, std::string_view a, std::string_view b) {
+    return r.value_span(a).begin > r.value_span(b).begin;
+}
+
+}  // namespace wsd::lang

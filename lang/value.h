@@ -1,0 +1,112 @@
+// Runtime values of the .wsd language: number, bool, string, vector2, vector3, list, material and
+// texture. Every value keeps the span it came from. Lists are immutable and shared; a list of
+// numeric vector literals shares the parser's packed storage instead of one Value per element.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "lang/ast.h"
+#include "lang/source.h"
+#include "render/scene_spec.h"
+
+namespace wsd::lang {
+
+// The include statements that led to a file, innermost first: errors found after evaluation (while
+// building the render scene) replay them as include-chain notes.
+struct IncludeSite {
+    Span site;
+    std::shared_ptr<const IncludeSite> parent;
+};
+using IncludeChain = std::shared_ptr<const IncludeSite>;
+
+struct ListValue;
+struct MaterialValue;
+struct TextureValue;
+using ListPtr = std::shared_ptr<const ListValue>;
+using MaterialPtr = std::shared_ptr<const MaterialValue>;
+using TexturePtr = std::shared_ptr<const TextureValue>;
+
+// The order matches the variant's alternatives in Value.
+enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture };
+
+const char* type_name(ValueType type);  // "number", "vector3", ...
+
+class Value {
+public:
+    Value() = default;
+    static Value make_number(double x, Span span) { return Value(x, span); }
+    static Value make_bool(bool b, Span span) { return Value(b, span); }
+    static Value make_string(std::string s, Span span) { return Value(std::move(s), span); }
+    static Value make_vec2(glm::dvec2 v, Span span) { return Value(v, span); }
+    static Value make_vec3(glm::dvec3 v, Span span) { return Value(v, span); }
+    static Value make_list(ListPtr l, Span span) { return Value(std::move(l), span); }
+    static Value make_material(MaterialPtr m, Span span) { return Value(std::move(m), span); }
+    static Value make_texture(TexturePtr t, Span span) { return Value(std::move(t), span); }
+
+    ValueType type() const { return static_cast<ValueType>(payload_.index()); }
+    bool is(ValueType t) const { return type() == t; }
+    bool is_vector() const { return is(ValueType::Vector2) || is(ValueType::Vector3); }
+    const Span& span() const { return span_; }
+    void set_span(Span s) { span_ = s; }
+
+    double number() const { return std::get<double>(payload_); }
+    bool boolean() const { return std::get<bool>(payload_); }
+    const std::string& string() const { return std::get<std::string>(payload_); }
+    glm::dvec2 vec2() const { return std::get<glm::dvec2>(payload_); }
+    glm::dvec3 vec3() const { return std::get<glm::dvec3>(payload_); }
+    const ListValue& list() const { return *std::get<ListPtr>(payload_); }
+    const ListPtr& list_ptr() const { return std::get<ListPtr>(payload_); }
+    const MaterialPtr& material() const { return std::get<MaterialPtr>(payload_); }
+    const TexturePtr& texture() const { return std::get<TexturePtr>(payload_); }
+
+private:
+    using Payload = std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr,
+                                 MaterialPtr, TexturePtr>;
+    template <class T>
+    Value(T&& x, Span span) : payload_(std::forward<T>(x)), span_(span) {}
+    Payload payload_{0.0};
+    Span span_;
+};
+
+struct ListValue {
+    std::vector<Value> items;                      // used unless `packed` is set
+    std::shared_ptr<const PackedVectors> packed;   // shared with the AST, never copied
+
+    size_t size() const { return packed ? packed->size() : items.size(); }
+    // Element i; a packed element becomes a vector value spanning its literal.
+    Value at(size_t i, const SourceManager& sources) const;
+    Span span_of(size_t i, const SourceManager& sources) const;
+};
+
+// The span of element i of a packed list: from its '<' to the matching '>' (packed elements are
+// plain numeric literals, so the first '>' closes them).
+Span packed_element_span(const PackedVectors& packed, size_t i, const SourceManager& sources);
+
+struct TextureValue {
+    render::TextureSpec spec;
+    Span span;           // image: the path string; checker/perlin: the keyword
+    IncludeChain chain;  // where it was written
+};
+
+struct MaterialValue {
+    render::MaterialSpec spec;  // spec.texture / spec.bump mirror `texture` / `bump`
+    TexturePtr texture, bump;
+    Span span;                  // the `material {` that made it
+    IncludeChain chain;
+};
+
+// Text for messages: numbers in shortest round-trip form (integers without exponent), vectors
+// as <x, y, z>, strings quoted; lists, materials and textures by their type.
+std::string format_number(double x);
+std::string describe(const Value& v);
+
+// Same-type equality (numbers, bools, strings, vectors); callers check the types first.
+bool values_equal(const Value& a, const Value& b);
+
+}  // namespace wsd::lang
