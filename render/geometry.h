@@ -24,6 +24,7 @@ struct Ray {
 struct HitRecord {
     double t = 0;
     uint32_t prim = 0;      // geometry-global primitive index
+    uint32_t slot = 0;      // internal: where the primitive is stored (set by intersect)
     double b1 = 0, b2 = 0;  // barycentrics (triangles), or shape-specific parameters
 };
 

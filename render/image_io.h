@@ -1,4 +1,4 @@
-// Reading and writing images: the one place that defines the stb implementation macros.
+// Reading and writing images (the stb implementation macros live in render/stb_impl.cpp).
 // 8-bit formats are clamped, sRGB-encoded and rounded; HDR and PFM are linear floats.
 #pragma once
 

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "render/scene_spec.h"
@@ -16,6 +17,14 @@ struct ObjResult {
     std::vector<std::string> notes;     // at most one per skipped statement kind, "FILE:LINE: ..."
 };
 
+// The language's limit on a mesh's triangle count (wsd-language.md §5: 2^24 primitives).
+inline constexpr size_t kMaxObjTriangles = size_t{1} << 24;
+
+// load_obj reads the whole file (regular files only) and parses it; `path` names it in messages.
+// Indices may refer forward (checked once the file is read). MeshData has one uv and normal per
+// vertex, so corners sharing a `v` with different `vt`/`vn` become separate vertices. In a file
+// where only some faces have vt (or vn), the others get the uv a mesh without uvs would use (their
+// barycentrics) and flat normals; a single face mixing corners with and without them is an error.
 ObjResult load_obj(const std::string& path);
 ObjResult parse_obj(const std::string& name, std::string_view text);
 

@@ -1,0 +1,128 @@
+// Float bounding boxes and the robust ray/box slab test used by BVH traversal (robustness.md T7):
+// the double ray origin is rounded to floats on both sides so that each slab distance is
+// conservative, tFar is widened by 1 + 2γ₃, and NaN slabs (0·∞) lose every comparison.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
+#include "render/math.h"
+
+namespace wsd::render {
+
+struct Bounds3f {
+    Vec3f lo{std::numeric_limits<float>::infinity()};
+    Vec3f hi{-std::numeric_limits<float>::infinity()};
+
+    void extend(const Vec3f& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void extend(const Bounds3f& b) {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
+    bool empty() const { return lo.x > hi.x; }
+    Vec3f centroid() const { return (lo + hi) * 0.5f; }
+    Vec3f extent() const { return hi - lo; }
+    float half_area() const {
+        if (empty()) return 0;
+        Vec3f e = extent();
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+    // Conservative float box around a double box.
+    static Bounds3f around(const Vec3& lo, const Vec3& hi) {
+        Bounds3f b;
+        b.lo = {to_float_down(lo.x), to_float_down(lo.y), to_float_down(lo.z)};
+        b.hi = {to_float_up(hi.x), to_float_up(hi.y), to_float_up(hi.z)};
+        return b;
+    }
+};
+
+// 32 bytes: b[0..2] = lower corner, b[3..5] = upper corner. Inner nodes have count == 0 and
+// their two children at `first` and `first + 1` (one cache line); leaves cover
+// order[first, first + count).
+struct BvhNode {
+    float b[6];
+    uint32_t first;
+    uint32_t count;
+};
+static_assert(sizeof(BvhNode) == 32);
+
+// A node of the 4-wide traversal tree: up to four children, transposed so that one SIMD slab
+// test covers them. Per axis a: lo[a][i] and hi[a][i] bound child i. A child with count == 0 is
+// inner and `first` is its own Bvh4Node; otherwise it is a leaf over order[first, first +
+// count). Unused lanes hold the empty box (lo = +inf, hi = -inf), which no ray enters.
+struct alignas(64) Bvh4Node {
+    float lo[3][4];
+    float hi[3][4];
+    uint32_t first[4];
+    uint32_t count[4];
+};
+static_assert(sizeof(Bvh4Node) == 128);
+
+// Per-ray constants of the slab test, and the test of the four boxes of a node at once.
+struct RayBoxTest {
+    float o_near[3], o_far[3], inv[3];
+    int near_off[3], far_off[3];  // the near and far plane rows: offsets into Bvh4Node, in floats
+#if defined(__SSE2__)
+    __m128 o_near4[3], o_far4[3], inv4[3];
+#endif
+
+    void init(const Vec3& o, const Vec3& d) {
+        for (int a = 0; a < 3; ++a) {
+            bool neg = std::signbit(d[a]);
+            // The near plane is the lower bound when d > 0: its distance is underestimated by
+            // taking the origin rounded up, the far one's overestimated by rounding it down.
+            float lo = to_float_down(o[a]), hi = to_float_up(o[a]);
+            o_near[a] = neg ? lo : hi;
+            o_far[a] = neg ? hi : lo;
+            inv[a] = static_cast<float>(1.0 / d[a]);
+            near_off[a] = (neg ? 12 : 0) + 4 * a;
+            far_off[a] = (neg ? 0 : 12) + 4 * a;
+#if defined(__SSE2__)
+            o_near4[a] = _mm_set1_ps(o_near[a]);
+            o_far4[a] = _mm_set1_ps(o_far[a]);
+            inv4[a] = _mm_set1_ps(inv[a]);
+#endif
+        }
+    }
+
+    static constexpr float kWiden = static_cast<float>(1 + 2 * gamma_f(3));
+
+    // Bit i of the result is set when the ray may meet child i within (0, t_limit]; t_entry[i]
+    // gets its entry distance. NaN slabs (0·∞) never decide.
+    int hit4(const Bvh4Node& node, float t_limit, float* t_entry) const {
+        const float* base = &node.lo[0][0];
+#if defined(__SSE2__)
+        __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
+        for (int a = 0; a < 3; ++a) {
+            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + near_off[a]), o_near4[a]), inv4[a]);
+            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + far_off[a]), o_far4[a]), inv4[a]);
+            tn = _mm_max_ps(t0, tn);  // maxps returns its second operand when one is NaN
+            tf = _mm_min_ps(t1, tf);
+        }
+        _mm_storeu_ps(t_entry, tn);
+        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(kWiden))));
+#else
+        int mask = 0;
+        for (int i = 0; i < 4; ++i) {
+            float tn = 0, tf = t_limit;
+            for (int a = 0; a < 3; ++a) {
+                float t0 = (base[near_off[a] + i] - o_near[a]) * inv[a];
+                float t1 = (base[far_off[a] + i] - o_far[a]) * inv[a];
+                tn = t0 > tn ? t0 : tn;  // a NaN t0 leaves tn unchanged
+                tf = t1 < tf ? t1 : tf;
+            }
+            t_entry[i] = tn;
+            if (tn <= tf * kWiden) mask |= 1 << i;
+        }
+        return mask;
+#endif
+    }
+};
+
+}  // namespace wsd::render

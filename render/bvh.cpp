@@ -1,0 +1,454 @@
+// Binned SAH BVH builder (see bvh.h). Primitive references (bounds + id, 32 bytes) are
+// partitioned in place so every pass reads memory in order; children's bounds come from the bins,
+// their centroid bounds from the partition pass. Subtrees above kSubtreeMin primitives are built
+// into their own node arrays (on another thread when one is idle) and spliced in afterwards.
+#include "render/bvh.h"
+
+#include <algorithm>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+#include <atomic>
+#include <bit>
+#include <limits>
+#include <thread>
+
+namespace wsd::render {
+
+namespace {
+
+// Four floats with min/max: SSE where the target has it (every x86-64), scalar elsewhere.
+#if defined(__SSE2__)
+struct F4 {
+    __m128 v;
+    static F4 load(const float* p) { return {_mm_loadu_ps(p)}; }
+    static F4 splat(float x) { return {_mm_set1_ps(x)}; }
+    void store(float* p) const { _mm_storeu_ps(p, v); }
+    friend F4 min(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }
+    friend F4 max(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }
+    friend F4 operator+(F4 a, F4 b) { return {_mm_add_ps(a.v, b.v)}; }
+    friend F4 operator-(F4 a, F4 b) { return {_mm_sub_ps(a.v, b.v)}; }
+    friend F4 operator*(F4 a, F4 b) { return {_mm_mul_ps(a.v, b.v)}; }
+    void truncate_to(int* k) const {
+        alignas(16) int32_t out[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(v));
+        k[0] = out[0], k[1] = out[1], k[2] = out[2];
+    }
+};
+#else
+struct F4 {
+    float v[4];
+    static F4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+    static F4 splat(float x) { return {{x, x, x, x}}; }
+    void store(float* p) const { std::copy(v, v + 4, p); }
+    template <class Op>
+    static F4 zip(F4 a, F4 b, Op op) {
+        return {{op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
+    }
+    friend F4 min(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x < y ? x : y; }); }
+    friend F4 max(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x > y ? x : y; }); }
+    friend F4 operator+(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x + y; }); }
+    friend F4 operator-(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x - y; }); }
+    friend F4 operator*(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x * y; }); }
+    void truncate_to(int* k) const {
+        for (int a = 0; a < 3; ++a) k[a] = static_cast<int>(v[a]);
+    }
+};
+#endif
+
+// A primitive reference: its bounds, with its id in the fourth lane of lo (boxes ignore that
+// lane). Centroids are kept doubled (lo + hi) throughout; only their order matters.
+struct alignas(16) Ref {
+    float lo[4];
+    float hi[4];
+    float c2(int a) const { return lo[a] + hi[a]; }
+    uint32_t id() const { return std::bit_cast<uint32_t>(lo[3]); }
+};
+
+struct Box {
+    static constexpr float kInf = std::numeric_limits<float>::infinity();
+    F4 lo = F4::splat(kInf), hi = F4::splat(-kInf);
+    void extend(F4 l, F4 h) {
+        lo = min(lo, l);
+        hi = max(hi, h);
+    }
+    void extend(const Box& b) { extend(b.lo, b.hi); }
+    void extend_point(F4 p) { extend(p, p); }
+    void get(float* l, float* h) const {
+        lo.store(l);
+        hi.store(h);
+    }
+    float extent(int a) const {
+        float l[4], h[4];
+        get(l, h);
+        return h[a] - l[a];
+    }
+    float half_area() const {
+        float l[4], h[4];
+        get(l, h);
+        if (l[0] > h[0]) return 0;
+        float x = h[0] - l[0], y = h[1] - l[1], z = h[2] - l[2];
+        return x * y + y * z + z * x;
+    }
+};
+
+struct Range {
+    uint32_t begin = 0, end = 0;
+    Box box, cbox;  // bounds of the primitives and of their (doubled) centroids
+};
+
+constexpr uint32_t kSubtreeMin = 1u << 14;
+constexpr int kSahDepthCap = 40;  // past it, object-median splits keep the depth < 64
+constexpr int kMaxBins = 32;
+
+struct Shared {
+    std::vector<Ref>& refs;
+    BvhOptions opt;
+    std::atomic<int> idle;
+};
+
+struct Task {
+    std::vector<BvhNode> nodes;
+    int depth = 0;
+};
+
+void set_bounds(BvhNode& n, const Box& b) {
+    float l[4], h[4];
+    b.get(l, h);
+    for (int a = 0; a < 3; ++a) {
+        n.b[a] = l[a];
+        n.b[a + 3] = h[a];
+    }
+}
+
+struct Split {
+    int axis = -1;
+    int bin = 0;  // left side takes bins [0, bin]
+    float cost = 0;
+    Box left, right;
+};
+
+struct Binning {
+    int nb = 1;
+    F4 cmin = F4::splat(0), scale = F4::splat(0);
+    float cmin_s[4] = {}, scale_s[4] = {};
+    int index(float c, int a) const {
+        int k = static_cast<int>((c - cmin_s[a]) * scale_s[a]);
+        return k < 0 ? 0 : (k >= nb ? nb - 1 : k);
+    }
+    // The bins of a (doubled) centroid on all three axes: clamping before truncating gives
+    // the same bins as index() (truncation toward zero maps (-1, 0) to 0 either way).
+    void indices(F4 c2, int* k) const {
+        F4 f = min(max((c2 - cmin) * scale, F4::splat(0)), F4::splat(static_cast<float>(nb - 1)));
+        f.truncate_to(k);
+    }
+};
+
+// Trivial on purpose: find_split resets only the bins it uses.
+struct Bin {
+    Box box;
+    uint32_t count;
+};
+
+// Best SAH split over all three axes (axis -1 when the centroids do not spread).
+Split find_split(const Shared& s, const Range& r, Binning& binning) {
+    const uint32_t n = r.end - r.begin;
+    const int nb = std::min({s.opt.bins, kMaxBins, static_cast<int>(n < 4 ? 4 : n)});
+    binning.nb = nb;
+    bool spread = false;
+    float cl[4], ch[4];
+    r.cbox.get(cl, ch);
+    for (int a = 0; a < 3; ++a) {
+        float ext = ch[a] - cl[a];
+        binning.cmin_s[a] = cl[a];
+        binning.scale_s[a] = ext > 0 ? static_cast<float>(nb) / ext : 0.0f;
+        spread = spread || ext > 0;
+    }
+    binning.cmin = F4::load(binning.cmin_s);
+    binning.scale = F4::load(binning.scale_s);
+    Split best;
+    if (!spread) return best;
+
+    union Storage {
+        Storage() {}
+        Bin bins[3][kMaxBins];
+    } storage;
+    auto& bins = storage.bins;
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) bins[a][k] = Bin{Box{}, 0};
+    for (uint32_t i = r.begin; i < r.end; ++i) {
+        const Ref& ref = s.refs[i];
+        F4 lo = F4::load(ref.lo), hi = F4::load(ref.hi);
+        int k[3];
+        binning.indices(lo + hi, k);
+        for (int a = 0; a < 3; ++a) {
+            Bin& b = bins[a][k[a]];
+            b.box.extend(lo, hi);
+            ++b.count;
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (!(ch[a] - cl[a] > 0)) continue;
+        float right_area[kMaxBins];
+        uint32_t right_count[kMaxBins];
+        Box acc;
+        uint32_t nr = 0;
+        for (int k = nb - 1; k > 0; --k) {
+            acc.extend(bins[a][k].box);
+            nr += bins[a][k].count;
+            right_area[k] = acc.half_area();
+            right_count[k] = nr;
+        }
+        Box left;
+        uint32_t nl = 0;
+        for (int k = 0; k < nb - 1; ++k) {
+            left.extend(bins[a][k].box);
+            nl += bins[a][k].count;
+            uint32_t nrk = right_count[k + 1];
+            if (nl == 0 || nrk == 0) continue;
+            float cost = left.half_area() * static_cast<float>(nl) +
+                         right_area[k + 1] * static_cast<float>(nrk);
+            if (best.axis < 0 || cost < best.cost) {
+                best.axis = a;
+                best.bin = k;
+                best.cost = cost;
+                best.left = left;
+            }
+        }
+        if (best.axis == a) {
+            Box right;
+            for (int k = best.bin + 1; k < nb; ++k) right.extend(bins[a][k].box);
+            best.right = right;
+        }
+    }
+    return best;
+}
+
+void bounds_of(const Shared& s, Range& r) {
+    r.box = Box{};
+    r.cbox = Box{};
+    for (uint32_t i = r.begin; i < r.end; ++i) {
+        F4 lo = F4::load(s.refs[i].lo), hi = F4::load(s.refs[i].hi);
+        r.box.extend(lo, hi);
+        r.cbox.extend_point(lo + hi);
+    }
+}
+
+// Splits r at its object median along the widest centroid axis.
+void median_split(Shared& s, const Range& r, Range& left, Range& right) {
+    uint32_t mid = r.begin + (r.end - r.begin) / 2;
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (r.cbox.extent(a) > r.cbox.extent(axis)) axis = a;
+    if (r.cbox.extent(axis) > 0) {
+        std::nth_element(s.refs.begin() + r.begin, s.refs.begin() + mid, s.refs.begin() + r.end,
+                         [axis](const Ref& x, const Ref& y) {
+                             float cx = x.c2(axis), cy = y.c2(axis);
+                             return cx < cy || (cx == cy && x.id() < y.id());
+                         });
+    }
+    left.begin = r.begin, left.end = mid;
+    right.begin = mid, right.end = r.end;
+    bounds_of(s, left);
+    bounds_of(s, right);
+}
+
+void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth);
+
+// Builds the subtree of `r` into its own array (root at index 0) and splices it under `node`.
+void build_child(Shared& s, Task& task, uint32_t node, const Range& r, int depth,
+                 Task& sub, std::thread& worker) {
+    (void)task;
+    (void)node;
+    sub.nodes.reserve(2 * (r.end - r.begin) / std::max(1, s.opt.max_leaf) + 2);
+    sub.nodes.push_back(BvhNode{});
+    if (s.idle.fetch_sub(1) > 0) {
+        worker = std::thread([&s, &sub, r, depth] {
+            build_node(s, sub, 0, r, depth);
+            s.idle.fetch_add(1);
+        });
+    } else {
+        s.idle.fetch_add(1);
+        build_node(s, sub, 0, r, depth);
+    }
+}
+
+void splice(Task& task, uint32_t node, Task& sub) {
+    uint32_t base = static_cast<uint32_t>(task.nodes.size());
+    auto relocate = [base](BvhNode n) {
+        if (n.count == 0) n.first = base + n.first - 1;
+        return n;
+    };
+    task.nodes[node] = relocate(sub.nodes[0]);
+    for (size_t i = 1; i < sub.nodes.size(); ++i) task.nodes.push_back(relocate(sub.nodes[i]));
+    task.depth = std::max(task.depth, sub.depth);
+}
+
+void make_leaf(Task& task, uint32_t node, const Range& r) {
+    task.nodes[node].first = r.begin;
+    task.nodes[node].count = r.end - r.begin;
+}
+
+void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth) {
+    set_bounds(task.nodes[node], r.box);
+    task.depth = std::max(task.depth, depth);
+    const uint32_t n = r.end - r.begin;
+    const uint32_t max_leaf = static_cast<uint32_t>(std::max(1, s.opt.max_leaf));
+    if (n == 1) return make_leaf(task, node, r);
+
+    Range left, right;
+    bool split_done = false;
+    if (depth < kSahDepthCap) {
+        Binning binning{};
+        Split sp = find_split(s, r, binning);
+        if (sp.axis >= 0) {
+            float area = r.box.half_area();
+            float split_cost = s.opt.traversal_cost +
+                               s.opt.intersect_cost * (area > 0 ? sp.cost / area : static_cast<float>(n));
+            float leaf_cost = s.opt.intersect_cost * static_cast<float>(n);
+            if (n <= max_leaf && leaf_cost <= split_cost) return make_leaf(task, node, r);
+            // Partition by the same bin function, collecting each side's centroid bounds.
+            const int axis = sp.axis, bin = sp.bin;
+            auto first = s.refs.begin() + r.begin, last = s.refs.begin() + r.end;
+            Box cl, cr;
+            auto mid = std::partition(first, last, [&](const Ref& ref) {
+                F4 c = F4::load(ref.lo) + F4::load(ref.hi);
+                int k[3];
+                binning.indices(c, k);
+                if (k[axis] <= bin) {
+                    cl.extend_point(c);
+                    return true;
+                }
+                cr.extend_point(c);
+                return false;
+            });
+            uint32_t m = static_cast<uint32_t>(mid - s.refs.begin());
+            left = Range{r.begin, m, sp.left, cl};
+            right = Range{m, r.end, sp.right, cr};
+            split_done = true;
+        } else if (n <= max_leaf) {
+            return make_leaf(task, node, r);
+        }
+    } else if (n <= max_leaf) {
+        return make_leaf(task, node, r);
+    }
+    if (!split_done) median_split(s, r, left, right);
+
+    uint32_t pair = static_cast<uint32_t>(task.nodes.size());
+    task.nodes.push_back(BvhNode{});
+    task.nodes.push_back(BvhNode{});
+    task.nodes[node].first = pair;
+    task.nodes[node].count = 0;
+
+    if (right.end - right.begin >= kSubtreeMin) {
+        Task sub;
+        std::thread worker;
+        build_child(s, task, pair + 1, right, depth + 1, sub, worker);
+        build_node(s, task, pair, left, depth + 1);
+        if (worker.joinable()) worker.join();
+        splice(task, pair + 1, sub);
+    } else {
+        build_node(s, task, pair, left, depth + 1);
+        build_node(s, task, pair + 1, right, depth + 1);
+    }
+}
+
+}  // namespace
+
+Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
+    Bvh bvh;
+    const uint32_t n = static_cast<uint32_t>(bounds.size());
+    if (n == 0) return bvh;
+    std::vector<Ref> refs(n);
+    for (uint32_t i = 0; i < n; ++i)
+        refs[i] = Ref{{bounds[i].lo.x, bounds[i].lo.y, bounds[i].lo.z, std::bit_cast<float>(i)},
+                      {bounds[i].hi.x, bounds[i].hi.y, bounds[i].hi.z, 0.0f}};
+
+    int threads = options.threads > 0 ? options.threads
+                                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    Shared s{refs, options, {threads - 1}};
+    Range root;
+    root.end = n;
+    bounds_of(s, root);
+
+    Task task;
+    task.nodes.reserve(2 * n / std::max(1, options.max_leaf) + 2);
+    task.nodes.push_back(BvhNode{});
+    build_node(s, task, 0, root, 0);
+
+    bvh.nodes = std::move(task.nodes);
+    bvh.nodes.shrink_to_fit();
+    bvh.depth = task.depth;
+    bvh.order.resize(n);
+    for (uint32_t i = 0; i < n; ++i) bvh.order[i] = refs[i].id();
+    return bvh;
+}
+
+namespace {
+
+float node_area(const BvhNode& n) {
+    float x = n.b[3] - n.b[0], y = n.b[4] - n.b[1], z = n.b[5] - n.b[2];
+    return x * y + y * z + z * x;
+}
+
+// Emits the Bvh4Node for the children of inner node `n` (opening the largest inner children
+// until there are four) and, depth first, the nodes below it; returns its index.
+uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4Node>& out) {
+    uint32_t kids[4] = {nodes[n].first, nodes[n].first + 1, 0, 0};
+    int count = 2;
+    while (count < 4) {
+        int open = -1;
+        for (int i = 0; i < count; ++i)
+            if (nodes[kids[i]].count == 0 && (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
+                open = i;
+        if (open < 0) break;
+        uint32_t inner = kids[open];
+        kids[open] = nodes[inner].first;
+        kids[count++] = nodes[inner].first + 1;
+    }
+    const uint32_t index = static_cast<uint32_t>(out.size());
+    out.push_back(Bvh4Node{});
+    Bvh4Node node{};
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < 4; ++i) {
+        for (int a = 0; a < 3; ++a) {
+            node.lo[a][i] = i < count ? nodes[kids[i]].b[a] : kInf;
+            node.hi[a][i] = i < count ? nodes[kids[i]].b[a + 3] : -kInf;
+        }
+        node.first[i] = 0;
+        node.count[i] = 0;
+    }
+    for (int i = 0; i < count; ++i) {
+        const BvhNode& k = nodes[kids[i]];
+        node.count[i] = k.count;
+        node.first[i] = k.count > 0 ? k.first : emit4(nodes, kids[i], out);
+    }
+    out[index] = node;
+    return index;
+}
+
+}  // namespace
+
+std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes) {
+    std::vector<Bvh4Node> out;
+    if (nodes.empty()) return out;
+    out.reserve(nodes.size() / 3 + 1);
+    if (nodes[0].count > 0) {
+        Bvh4Node root{};
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        for (int i = 0; i < 4; ++i)
+            for (int a = 0; a < 3; ++a) {
+                root.lo[a][i] = i == 0 ? nodes[0].b[a] : kInf;
+                root.hi[a][i] = i == 0 ? nodes[0].b[a + 3] : -kInf;
+            }
+        root.first[0] = nodes[0].first;
+        root.count[0] = nodes[0].count;
+        out.push_back(root);
+    } else {
+        emit4(nodes, 0, out);
+    }
+    out.shrink_to_fit();
+    return out;
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,38 @@
+// A bounding volume hierarchy over boxes and indices only (no shapes): binned SAH build into flat
+// 32-byte nodes whose two children sit side by side, with a primitive permutation. Large inputs
+// are split into subtrees built on std::threads; the result does not depend on the thread count.
+// For traversal the binary tree is collapsed into a 4-wide one (Bvh4Node: about the same bytes
+// per child, half the levels), so that one SIMD slab test covers four children.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/aabb.h"
+
+namespace wsd::render {
+
+struct BvhOptions {
+    int max_leaf = 4;         // primitives per leaf at most
+    int bins = 16;            // SAH bins per axis
+    float traversal_cost = 1.0f;
+    float intersect_cost = 1.0f;
+    int threads = 1;          // 0 = all cores
+};
+
+struct Bvh {
+    std::vector<BvhNode> nodes;   // nodes[0] is the root (empty when there are no primitives)
+    std::vector<uint32_t> order;  // leaves refer to order[first, first + count)
+    int depth = 0;                // longest root-to-leaf path, in edges
+};
+
+// Every bound must be finite and non-empty. Depth stays below kMaxBvhDepth: past a depth cap
+// the builder splits at the object median instead of by SAH.
+inline constexpr int kMaxBvhDepth = 64;
+Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options);
+
+// Collapses built nodes into the 4-wide traversal tree (see Bvh4Node in aabb.h), in depth-first
+// order; node 0 holds the root's children (or the root itself when it is a leaf).
+std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes);
+
+}  // namespace wsd::render

@@ -1,0 +1,60 @@
+// Camera frame construction and validation (wsd-language.md §4 "camera"; robustness.md R46, R47).
+#include "render/camera.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace wsd::render {
+
+namespace {
+
+bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int height,
+                                     std::string& error) {
+    if (!finite3(spec.position) || !finite3(spec.look_at) || !finite3(spec.up)) {
+        error = "camera position, look_at and up must be finite";
+        return std::nullopt;
+    }
+    if (!(spec.fov_degrees > 0.0 && spec.fov_degrees < 180.0)) {
+        error = "camera fov must be in (0, 180) degrees";
+        return std::nullopt;
+    }
+    if (width < 1 || height < 1) {
+        error = "image size must be at least 1×1";
+        return std::nullopt;
+    }
+    const Vec3 view = spec.look_at - spec.position;
+    const double view_len = glm::length(view);
+    if (!(view_len > 0.0) || !std::isfinite(view_len)) {
+        error = "camera position and look_at must differ";
+        return std::nullopt;
+    }
+    const double up_len = glm::length(spec.up);
+    if (!(up_len > 0.0) || !std::isfinite(up_len)) {
+        error = "camera up must be a non-zero vector";
+        return std::nullopt;
+    }
+    Camera cam;
+    cam.origin_ = spec.position;
+    cam.forward_ = view / view_len;
+    const Vec3 side = glm::cross(spec.up / up_len, cam.forward_);
+    const double side_len = glm::length(side);
+    // The sine of the angle between up and the view direction: below this the frame would be
+    // dominated by rounding (a validation threshold on a dimensionless quantity, not a ray epsilon).
+    if (!(side_len > 1e-9)) {
+        error = "camera up is parallel to the view direction (look_at - position)";
+        return std::nullopt;
+    }
+    cam.right_ = side / side_len;
+    cam.up_ = glm::cross(cam.forward_, cam.right_);
+    cam.half_height_ = std::tan(spec.fov_degrees * std::numbers::pi / 360.0);
+    cam.half_width_ = cam.half_height_ * double(width) / double(height);
+    cam.inv_width_ = 1.0 / double(width);
+    cam.inv_height_ = 1.0 / double(height);
+    return cam;
+}
+
+}  // namespace wsd::render

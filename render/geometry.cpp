@@ -1,0 +1,371 @@
+// Geometry queries: closest-hit and any-hit traversal (BVH, or brute force over every primitive),
+// the surface data of a hit, and error-bounded spawn origins (pbrt-v4 OffsetRayOrigin). Ties in
+// t resolve to the lowest canonical primitive id, so BVH and brute force agree bit for bit.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <thread>
+
+#include "render/geometry_impl.h"
+
+namespace wsd::render {
+
+uint32_t Geometry::Impl::shape_of(uint32_t prim) const {
+    auto it = std::upper_bound(shape_first.begin(), shape_first.end(), prim);
+    return static_cast<uint32_t>(it - shape_first.begin()) - 1;
+}
+
+namespace {
+
+using Impl = Geometry::Impl;
+
+struct Counters {
+    uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0,
+             planes = 0;
+    void flush(RayStats& s) const {
+        s.box_tests += boxes;
+        s.triangle_tests += tri_tests;
+        s.triangle_hits += tri_hits;
+        s.sphere_tests += sph_tests;
+        s.sphere_hits += sph_hits;
+        s.shape_box_tests += shape_boxes;
+        s.plane_tests += planes;
+    }
+};
+
+// The running closest hit. Primitive tests accept t < limit; after a hit the limit becomes the
+// next double above it, so that an exact tie can still be resolved by primitive id.
+struct Best {
+    double limit;
+    double t = std::numeric_limits<double>::infinity();
+    uint32_t prim = 0xffffffffu, slot = 0;
+    double b1 = 0, b2 = 0;
+    bool hit = false;
+
+    void offer(double t_new, uint32_t prim_new, uint32_t slot_new, double b1_new, double b2_new) {
+        if (t_new < t || prim_new < prim) {
+            t = t_new, prim = prim_new, slot = slot_new, b1 = b1_new, b2 = b2_new;
+            hit = true;
+            limit = next_float_up(t);
+        }
+    }
+};
+
+bool ray_is_valid(const Ray& r, double tmax) {
+    return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) &&
+           !std::isnan(tmax);
+}
+
+inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const Vec3& o) {
+    Vec3 c = abs3(s.center);
+    double m = std::max({c.x, c.y, c.z}) + s.radius;
+    return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
+}
+
+// One primitive test; fills t, slot-specific parameters and the canonical id on a hit.
+[[gnu::always_inline]] inline bool test_entry(const Impl& g, const RayPre& r, uint32_t e, double limit, Counters& c,
+                       double& t, uint32_t& prim, double& b1, double& b2) {
+    const uint32_t slot = e & kSlotMask;
+    switch ((e >> kKindShift) & 3u) {
+    case 0: {
+        const TriPrim& tri = g.tris[slot];
+        ++c.tri_tests;
+        if (!intersect_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit,
+                                t, b1, b2))
+            return false;
+        ++c.tri_hits;
+        prim = tri.prim;
+        return true;
+    }
+    case 1: {
+        const SpherePrim& s = g.spheres[slot];
+        ++c.sph_tests;
+        bool hit;
+        if (s.xform == kNoTransform) {
+            hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
+        } else {
+            const Transform& x = g.xforms[s.xform];
+            Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
+            double a = glm::dot(d, d);
+            hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius,
+                                   sphere_origin_error(x, s, r.o), limit, t);
+        }
+        if (!hit) return false;
+        ++c.sph_hits;
+        prim = s.prim;
+        b1 = b2 = 0;
+        return true;
+    }
+    default: {
+        const BoxPrim& bx = g.boxes[slot];
+        ++c.shape_boxes;
+        int face = 0;
+        bool hit;
+        if (bx.xform == kNoTransform) {
+            // The identity's own error bound (γ₃|o|, as a transform would give), so that a
+            // scene scaled by 2^k decides edge cases exactly as the unscaled one.
+            hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit,
+                                      t, face);
+        } else {
+            const Transform& x = g.xforms[bx.xform];
+            hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
+                                      x.inv_point_error(r.o) + bx.band, limit, t, face);
+        }
+        if (!hit) return false;
+        prim = bx.prim;
+        b1 = face;
+        b2 = 0;
+        return true;
+    }
+    }
+}
+
+// kFilter: 0 every primitive, 1 opaque only, 2 transmissive only.
+template <int kFilter>
+inline bool passes(uint32_t e) {
+    if constexpr (kFilter == 0) {
+        return true;
+    } else {
+        bool trans = (e & kTransmissiveBit) != 0;
+        return trans == (kFilter == 2);
+    }
+}
+
+template <int kFilter>
+void test_planes(const Impl& g, const Ray& ray, Best& best, Counters& c) {
+    for (size_t i = 0; i < g.planes.size(); ++i) {
+        const PlanePrim& p = g.planes[i];
+        if constexpr (kFilter != 0) {
+            if ((p.transmissive != 0) != (kFilter == 2)) continue;
+        }
+        ++c.planes;
+        double t;
+        if (intersect_plane(ray.o, ray.d, p, best.limit, t))
+            best.offer(t, p.prim, static_cast<uint32_t>(i), 0, 0);
+    }
+}
+
+struct StackEntry {
+    uint32_t first, count;
+    float t;
+};
+// Each level of the 4-wide tree pushes at most three entries.
+constexpr int kStackSize = 3 * kMaxBvhDepth + 1;
+
+// The children of `node` that the ray enters, nearest first in out[0]; returns their number.
+inline int entered_children(const Bvh4Node& node, int mask, const float* tn, StackEntry* out) {
+    int m = 0;
+    while (mask != 0) {
+        const int i = std::countr_zero(static_cast<unsigned>(mask));
+        mask &= mask - 1;
+        StackEntry e{node.first[i], node.count[i], tn[i]};
+        int j = m++;
+        while (j > 0 && out[j - 1].t > e.t) {
+            out[j] = out[j - 1];
+            --j;
+        }
+        out[j] = e;
+    }
+    return m;
+}
+
+template <int kFilter>
+void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k) {
+            uint32_t e = g.order[k];
+            if (!passes<kFilter>(e)) continue;
+            double t, b1, b2;
+            uint32_t prim;
+            if (test_entry(g, r, e, best.limit, c, t, prim, b1, b2))
+                best.offer(t, prim, e & kSlotMask, b1, b2);
+        }
+    };
+    if (g.nodes.empty()) {
+        leaf(0, static_cast<uint32_t>(g.order.size()));
+        return;
+    }
+    const Bvh4Node* nodes = g.nodes.data();
+    float limit_f = to_float_up(best.limit);
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    uint32_t ni = 0;
+    for (;;) {
+        const Bvh4Node& node = nodes[ni];
+        float tn[4];
+        const int mask = r.box.hit4(node, limit_f, tn);
+        c.boxes += 4;
+        StackEntry next{};
+        bool have = mask != 0;
+        if (have) {
+            if ((mask & (mask - 1)) == 0) {
+                const int i = std::countr_zero(static_cast<unsigned>(mask));
+                next = {node.first[i], node.count[i], tn[i]};
+            } else {
+                // Nearest child next; the others wait, farthest deepest, with their entry
+                // distances for pruning once a hit shortens the ray.
+                StackEntry e[4];
+                const int m = entered_children(node, mask, tn, e);
+                for (int j = m - 1; j > 0; --j) stack[sp++] = e[j];
+                next = e[0];
+            }
+        }
+        for (;;) {
+            if (have) {
+                if (next.count == 0) {
+                    ni = next.first;
+                    break;
+                }
+                leaf(next.first, next.count);
+                limit_f = to_float_up(best.limit);
+            }
+            if (sp == 0) return;
+            next = stack[--sp];
+            have = next.t <= limit_f * RayBoxTest::kWiden;
+        }
+    }
+}
+
+template <int kFilter>
+bool any_hit(const Impl& g, const Ray& ray, const RayPre& r, double tmax, Counters& c) {
+    for (const PlanePrim& p : g.planes) {
+        if constexpr (kFilter != 0) {
+            if ((p.transmissive != 0) != (kFilter == 2)) continue;
+        }
+        ++c.planes;
+        double t;
+        if (intersect_plane(ray.o, ray.d, p, tmax, t)) return true;
+    }
+    auto leaf = [&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k) {
+            uint32_t e = g.order[k];
+            if (!passes<kFilter>(e)) continue;
+            double t, b1, b2;
+            uint32_t prim;
+            if (test_entry(g, r, e, tmax, c, t, prim, b1, b2)) return true;
+        }
+        return false;
+    };
+    if (g.nodes.empty()) return leaf(0, static_cast<uint32_t>(g.order.size()));
+    const Bvh4Node* nodes = g.nodes.data();
+    const float limit_f = to_float_up(tmax);
+    StackEntry stack[kStackSize];
+    int sp = 0;
+    uint32_t ni = 0;
+    for (;;) {
+        const Bvh4Node& node = nodes[ni];
+        float tn[4];
+        int mask = r.box.hit4(node, limit_f, tn);
+        c.boxes += 4;
+        for (; mask != 0; mask &= mask - 1) {
+            const int i = std::countr_zero(static_cast<unsigned>(mask));
+            stack[sp++] = {node.first[i], node.count[i], 0};
+        }
+        for (;;) {
+            if (sp == 0) return false;
+            const StackEntry next = stack[--sp];
+            if (next.count == 0) {
+                ni = next.first;
+                break;
+            }
+            if (leaf(next.first, next.count)) return true;
+        }
+    }
+}
+
+}  // namespace
+
+Geometry::Geometry(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Geometry::~Geometry() = default;
+
+std::optional<HitRecord> Geometry::intersect(const Ray& ray, double tmax, RayStats& stats,
+                                             RayFilter filter) const {
+    if (!ray_is_valid(ray, tmax)) {
+        ++stats.rejected_rays;
+        return std::nullopt;
+    }
+    if (!(tmax > 0)) return std::nullopt;
+    const Impl& g = *impl_;
+    if (!g.has_transmissive) {
+        if (filter == RayFilter::TransmissiveOnly) return std::nullopt;
+        filter = RayFilter::All;
+    }
+    Best best{tmax};
+    Counters c;
+    RayPre r(ray);
+    switch (filter) {
+    case RayFilter::All:
+        test_planes<0>(g, ray, best, c);
+        closest_hit<0>(g, r, best, c);
+        break;
+    case RayFilter::OpaqueOnly:
+        test_planes<1>(g, ray, best, c);
+        closest_hit<1>(g, r, best, c);
+        break;
+    case RayFilter::TransmissiveOnly:
+        test_planes<2>(g, ray, best, c);
+        closest_hit<2>(g, r, best, c);
+        break;
+    }
+    c.flush(stats);
+    if (!best.hit) return std::nullopt;
+    HitRecord h;
+    h.t = best.t;
+    h.prim = best.prim;
+    h.slot = best.slot;
+    h.b1 = best.b1;
+    h.b2 = best.b2;
+    return h;
+}
+
+bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter filter) const {
+    if (!ray_is_valid(ray, tmax)) {
+        ++stats.rejected_rays;
+        return false;
+    }
+    if (!(tmax > 0)) return false;
+    const Impl& g = *impl_;
+    if (!g.has_transmissive) {
+        if (filter == RayFilter::TransmissiveOnly) return false;
+        filter = RayFilter::All;
+    }
+    Counters c;
+    RayPre r(ray);
+    bool hit = false;
+    switch (filter) {
+    case RayFilter::All: hit = any_hit<0>(g, ray, r, tmax, c); break;
+    case RayFilter::OpaqueOnly: hit = any_hit<1>(g, ray, r, tmax, c); break;
+    case RayFilter::TransmissiveOnly: hit = any_hit<2>(g, ray, r, tmax, c); break;
+    }
+    c.flush(stats);
+    return hit;
+}
+
+Vec3 Geometry::offset_origin(const SurfaceHit& s, const Vec3& w) {
+    double dist = glm::dot(abs3(s.ng), s.p_error);
+    Vec3 offset = dist * s.ng;
+    if (glm::dot(w, s.ng) < 0) offset = -offset;
+    Vec3 po = s.p + offset;
+    // Round away from the surface, so that the addition's own rounding cannot pull po back.
+    for (int i = 0; i < 3; ++i) {
+        if (offset[i] > 0)
+            po[i] = next_float_up(po[i]);
+        else if (offset[i] < 0)
+            po[i] = next_float_down(po[i]);
+    }
+    return po;
+}
+
+size_t Geometry::primitive_count() const { return impl_->primitive_count; }
+size_t Geometry::triangle_count() const { return impl_->tris.size(); }
+bool Geometry::has_transmissive() const { return impl_->has_transmissive; }
+
+size_t Geometry::memory_bytes() const {
+    const Impl& g = *impl_;
+    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    return bytes(g.verts) + bytes(g.tris) + bytes(g.spheres) + bytes(g.boxes) + bytes(g.planes) +
+           bytes(g.xforms) + bytes(g.shapes) + bytes(g.shape_first) + bytes(g.tri_extra) +
+           bytes(g.plane_extra) + bytes(g.nodes) + bytes(g.order);
+}
+
+}  // namespace wsd::render

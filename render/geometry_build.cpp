@@ -1,0 +1,369 @@
+// Geometry::build: validates every shape of a SceneSpec (robustness.md T18: non-finite values,
+// degenerate triangles, bad indices, singular transforms, the 2^24 primitive limit), converts it
+// to world-space primitives, builds the BVH over the bounded ones and stores them in leaf order.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "render/geometry_impl.h"
+
+namespace wsd::render {
+
+namespace {
+
+constexpr int kMaxFaceErrorsPerMesh = 10;
+
+struct Builder {
+    const SceneSpec& spec;
+    std::vector<SpecError>& errors;
+    Geometry::Impl& g;
+    std::vector<Bounds3f> bounds;   // per bounded primitive, canonical order
+    std::vector<uint32_t> entries;  // encoded entries, same order
+    uint32_t next_prim = 0;
+    size_t shape_index = 0;
+    int shape_errors = 0;
+
+    void error(std::string message, long face = -1) {
+        const ShapeSpec& s = spec.shapes[shape_index];
+        errors.push_back(SpecError{SpecItem::Shape, shape_index, s.tag, std::move(message), face});
+        ++shape_errors;
+    }
+
+    bool transmissive(uint32_t material) const {
+        return spec.materials[material].transmission > 0;
+    }
+
+    void add_bounded(PrimKind kind, uint32_t slot, const Bounds3f& b, bool trans) {
+        bounds.push_back(b);
+        entries.push_back(encode_entry(kind, slot, trans));
+        ++next_prim;
+    }
+
+    uint32_t add_transform(const Transform& x) {
+        if (x.identity) return 0;
+        const Transform& last = g.xforms.back();
+        bool same = true;
+        for (int i = 0; i < 3; ++i) same = same && last.l[i] == x.l[i];
+        if (same && last.t == x.t && g.xforms.size() > 1) return static_cast<uint32_t>(g.xforms.size() - 1);
+        g.xforms.push_back(x);
+        return static_cast<uint32_t>(g.xforms.size() - 1);
+    }
+
+    void sphere(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void box(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    bool world_vertex(const Transform& x, const Vec3& p, Vec3f& out);
+    bool degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const;
+};
+
+// Widens a double box by its own rounding error before taking conservative float bounds, so
+// that hits accepted at the very rim of a shape stay inside its node.
+Bounds3f padded(const Vec3& lo, const Vec3& hi) {
+    Vec3 pad = gamma(8) * (abs3(lo) + abs3(hi) + (hi - lo));
+    return Bounds3f::around(lo - pad, hi + pad);
+}
+
+std::string face_name(const MeshData& m, size_t face) {
+    std::string s = "face " + std::to_string(face);
+    if (face < m.face_lines.size()) {
+        if (!m.source_name.empty())
+            s += " (" + m.source_name + " line " + std::to_string(m.face_lines[face]) + ")";
+        else
+            s += " (element " + std::to_string(m.face_lines[face]) + ")";
+    }
+    return s;
+}
+
+void Builder::sphere(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    if (!is_finite(s.center)) return error("sphere center has a non-finite coordinate");
+    if (!std::isfinite(s.radius) || !(s.radius > 0)) return error("sphere radius must be a positive number");
+    SpherePrim p{};
+    p.prim = next_prim;
+    Vec3 lo, hi;
+    if (x.similarity) {
+        // World space: the sphere is defined by its transformed centre and scaled radius.
+        p.center = x.point(s.center);
+        p.radius = s.radius * x.scale;
+        p.xform = kNoTransform;
+        lo = p.center - Vec3(p.radius);
+        hi = p.center + Vec3(p.radius);
+    } else {
+        p.center = s.center;
+        p.radius = s.radius;
+        p.xform = info.xform;
+        Vec3 c = x.point(s.center);
+        Vec3 ext(s.radius * glm::length(x.l[0]), s.radius * glm::length(x.l[1]),
+                 s.radius * glm::length(x.l[2]));
+        lo = c - ext;
+        hi = c + ext;
+    }
+    if (!is_finite(p.center) || !std::isfinite(p.radius) || !(p.radius > 0) || !is_finite(lo) ||
+        !is_finite(hi))
+        return error("sphere is out of range after its transform");
+    Bounds3f b = padded(lo, hi);
+    if (!is_finite(b.lo) || !is_finite(b.hi)) return error("sphere is out of range after its transform");
+    info.extra = static_cast<uint32_t>(g.spheres.size());
+    add_bounded(PrimKind::Sphere, static_cast<uint32_t>(g.spheres.size()), b, trans);
+    g.spheres.push_back(p);
+}
+
+void Builder::box(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    if (!is_finite(s.box_min) || !is_finite(s.box_max)) return error("box corner has a non-finite coordinate");
+    if (!(s.box_min.x < s.box_max.x && s.box_min.y < s.box_max.y && s.box_min.z < s.box_max.z))
+        return error("box min must be below max on every axis (a flat box has no volume)");
+    BoxPrim p{};
+    p.lo = s.box_min;
+    p.hi = s.box_max;
+    p.prim = next_prim;
+    p.xform = x.identity ? kNoTransform : info.xform;
+    Vec3 m = glm::max(abs3(p.lo), abs3(p.hi));
+    double mmax = std::max({m.x, m.y, m.z});
+    p.band = x.resid_lin * mmax + x.resid_t;
+    Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (int c = 0; c < 8; ++c) {
+        Vec3 corner((c & 1) ? p.hi.x : p.lo.x, (c & 2) ? p.hi.y : p.lo.y, (c & 4) ? p.hi.z : p.lo.z);
+        Vec3 w = x.point(corner);
+        lo = glm::min(lo, w);
+        hi = glm::max(hi, w);
+    }
+    Bounds3f b = padded(lo, hi);
+    if (!is_finite(b.lo) || !is_finite(b.hi)) return error("box is out of range after its transform");
+    info.extra = static_cast<uint32_t>(g.boxes.size());
+    add_bounded(PrimKind::Box, static_cast<uint32_t>(g.boxes.size()), b, trans);
+    g.boxes.push_back(p);
+}
+
+bool Builder::world_vertex(const Transform& x, const Vec3& p, Vec3f& out) {
+    Vec3 w = x.point(p);
+    out = Vec3f(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z));
+    return is_finite(out);
+}
+
+// Zero area in world space (after rounding to float): |e1 × e2| ≤ 1e-12·|e1||e2| (T18).
+bool Builder::degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const {
+    Vec3 v0(g.verts[i0]), v1(g.verts[i1]), v2(g.verts[i2]);
+    Vec3 e1 = v1 - v0, e2 = v2 - v0;
+    double cr = glm::length(glm::cross(e1, e2));
+    return !(cr > 1e-12 * glm::length(e1) * glm::length(e2));
+}
+
+void Builder::triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    for (const Vec3& v : s.v)
+        if (!is_finite(v)) return error("triangle vertex has a non-finite coordinate");
+    if (s.tri_uv)
+        for (const Vec2& uv : *s.tri_uv)
+            if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return error("triangle uv is not finite");
+    uint32_t base = static_cast<uint32_t>(g.verts.size());
+    for (const Vec3& v : s.v) {
+        Vec3f w;
+        if (!world_vertex(x, v, w)) {
+            g.verts.resize(base);
+            return error("triangle is out of range after its transform");
+        }
+        g.verts.push_back(w);
+    }
+    if (degenerate(base, base + 1, base + 2)) {
+        g.verts.resize(base);
+        return error("degenerate triangle: its vertices do not span an area");
+    }
+    info.vertex_offset = base;
+    TriExtra extra;
+    if (s.tri_uv) {
+        extra.has_uv = true;
+        for (int i = 0; i < 3; ++i) extra.uv[i] = (*s.tri_uv)[i];
+    }
+    info.extra = static_cast<uint32_t>(g.tri_extra.size());
+    g.tri_extra.push_back(extra);
+    Bounds3f b;
+    for (int i = 0; i < 3; ++i) b.extend(g.verts[base + i]);
+    add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
+    g.tris.push_back(TriPrim{{base, base + 1, base + 2}, next_prim - 1});
+}
+
+void Builder::plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    if (!is_finite(s.normal)) return error("plane normal has a non-finite coordinate");
+    if (!std::isfinite(s.distance)) return error("plane distance is not finite");
+    if (!std::isfinite(s.uv_scale) || !(s.uv_scale > 0)) return error("plane uv_scale must be a positive number");
+    Vec3 n = safe_normalize(s.normal, Vec3(0));
+    if (n == Vec3(0)) return error("plane normal must not be zero");
+    PlanePrim p{};
+    p.n = safe_normalize(x.normal(n), Vec3(0));
+    Vec3 on_plane = x.point(n * s.distance);
+    p.c = glm::dot(p.n, on_plane);
+    p.prim = next_prim++;
+    p.transmissive = trans ? 1u : 0u;
+    if (p.n == Vec3(0) || !std::isfinite(p.c)) return error("plane is out of range after its transform");
+    PlaneExtra extra;
+    extra.u = plane_u_axis(n);
+    extra.v = glm::cross(n, extra.u);
+    extra.uv_scale = s.uv_scale;
+    info.extra = static_cast<uint32_t>(g.planes.size());
+    g.plane_extra.push_back(extra);
+    g.planes.push_back(p);
+}
+
+void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    if (!s.mesh) return error("mesh has no data");
+    const MeshData& m = *s.mesh;
+    const size_t nv = m.vertices.size();
+    if (!m.uvs.empty() && m.uvs.size() != nv)
+        return error("mesh has " + std::to_string(m.uvs.size()) + " uvs for " + std::to_string(nv) +
+                     " vertices (need one per vertex)");
+    if (!m.normals.empty() && m.normals.size() != nv)
+        return error("mesh has " + std::to_string(m.normals.size()) + " normals for " +
+                     std::to_string(nv) + " vertices (need one per vertex)");
+    if (g.verts.size() + nv > kSlotMask) return error("mesh has too many vertices");
+    for (size_t i = 0; i < m.uvs.size(); ++i)
+        if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
+            return error("mesh uv " + std::to_string(i) + " is not finite");
+    for (size_t i = 0; i < m.normals.size(); ++i)
+        if (!is_finite(m.normals[i])) return error("mesh normal " + std::to_string(i) + " is not finite");
+
+    const uint32_t base = static_cast<uint32_t>(g.verts.size());
+    g.verts.resize(base + nv);
+    std::vector<uint8_t> bad_vertex(nv, 0);
+    for (size_t i = 0; i < nv; ++i) {
+        Vec3f w;
+        bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
+        g.verts[base + i] = ok ? w : Vec3f(0);
+        bad_vertex[i] = ok ? 0 : 1;
+    }
+    int face_errors = 0, more_errors = 0;
+    auto face_error = [&](size_t f, const std::string& what) {
+        if (face_errors < kMaxFaceErrorsPerMesh) {
+            error(face_name(m, f) + ": " + what, static_cast<long>(f));
+            ++face_errors;
+        } else {
+            ++more_errors;
+        }
+    };
+    const size_t tri_base = g.tris.size();
+    for (size_t f = 0; f < m.faces.size(); ++f) {
+        const glm::uvec3& face = m.faces[f];
+        if (face.x >= nv || face.y >= nv || face.z >= nv) {
+            face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) + " vertices)");
+            continue;
+        }
+        if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
+            size_t k = bad_vertex[face.x] ? face.x : (bad_vertex[face.y] ? face.y : face.z);
+            face_error(f, is_finite(m.vertices[k])
+                              ? "vertex " + std::to_string(k) + " is out of range after the transform"
+                              : "vertex " + std::to_string(k) + " has a non-finite coordinate");
+            continue;
+        }
+        uint32_t i0 = base + face.x, i1 = base + face.y, i2 = base + face.z;
+        if (degenerate(i0, i1, i2)) {
+            face_error(f, "degenerate triangle: its vertices do not span an area");
+            continue;
+        }
+        if (shape_errors > 0) continue;  // keep validating, but build nothing more
+        Bounds3f b;
+        b.extend(g.verts[i0]);
+        b.extend(g.verts[i1]);
+        b.extend(g.verts[i2]);
+        add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
+        g.tris.push_back(TriPrim{{i0, i1, i2}, next_prim - 1});
+    }
+    if (more_errors > 0) error("mesh has " + std::to_string(more_errors) + " more invalid faces");
+    if (shape_errors > 0) {
+        g.tris.resize(tri_base);
+        return;
+    }
+    info.vertex_offset = base;
+    if (!m.normals.empty() || !m.uvs.empty()) info.mesh = s.mesh;
+}
+
+}  // namespace
+
+std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors,
+                                          bool use_bvh, int threads) {
+    auto impl = std::make_unique<Impl>();
+    Impl& g = *impl;
+    g.use_bvh = use_bvh;
+    g.xforms.push_back(Transform{});
+    Builder b{spec, errors, g, {}, {}, 0, 0, 0};
+    const size_t errors_before = errors.size();
+    bool limit_reported = false;
+
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& s = spec.shapes[i];
+        b.shape_index = i;
+        b.shape_errors = 0;
+        if (s.material >= spec.materials.size()) {
+            b.error("material index " + std::to_string(s.material) + " is out of range");
+            continue;
+        }
+        Transform x;
+        if (auto msg = make_transform(s.object_to_world, x)) {
+            b.error(*msg);
+            continue;
+        }
+        ShapeInfo info;
+        info.kind = s.kind;
+        info.material = s.material;
+        info.xform = b.add_transform(x);
+        info.first_prim = b.next_prim;
+        info.mirrored = x.det < 0;
+        bool trans = b.transmissive(s.material);
+        switch (s.kind) {
+        case ShapeKind::Sphere: b.sphere(s, x, info, trans); break;
+        case ShapeKind::Box: b.box(s, x, info, trans); break;
+        case ShapeKind::Triangle: b.triangle(s, x, info, trans); break;
+        case ShapeKind::Plane: b.plane(s, x, info, trans); break;
+        case ShapeKind::Mesh: b.mesh(s, x, info, trans); break;
+        }
+        if (b.shape_errors > 0) continue;
+        if (b.next_prim > kMaxPrimitives && !limit_reported) {
+            b.error("the scene has more than 2^24 primitives (" + std::to_string(b.next_prim) +
+                    " so far)");
+            limit_reported = true;
+        }
+        if (trans) g.has_transmissive = true;
+        g.shapes.push_back(std::move(info));
+        g.shape_first.push_back(g.shapes.back().first_prim);
+    }
+    if (errors.size() > errors_before) return nullptr;
+    g.primitive_count = b.next_prim;
+
+    if (use_bvh && !b.bounds.empty()) {
+        BvhOptions opt;
+        opt.threads = threads;
+        Bvh bvh = build_bvh(b.bounds, opt);
+        g.nodes = to_bvh4(bvh.nodes);
+        g.bvh_depth = bvh.depth;
+        // Store the bounded primitives in leaf order, so that a leaf's data is contiguous.
+        std::vector<TriPrim> tris;
+        std::vector<SpherePrim> spheres;
+        std::vector<BoxPrim> boxes;
+        tris.reserve(g.tris.size());
+        spheres.reserve(g.spheres.size());
+        boxes.reserve(g.boxes.size());
+        g.order.resize(bvh.order.size());
+        for (size_t k = 0; k < bvh.order.size(); ++k) {
+            uint32_t e = b.entries[bvh.order[k]];
+            uint32_t slot = e & kSlotMask;
+            auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
+            uint32_t ns = 0;
+            switch (kind) {
+            case PrimKind::Triangle: ns = static_cast<uint32_t>(tris.size()); tris.push_back(g.tris[slot]); break;
+            case PrimKind::Sphere: ns = static_cast<uint32_t>(spheres.size()); spheres.push_back(g.spheres[slot]); break;
+            case PrimKind::Box: ns = static_cast<uint32_t>(boxes.size()); boxes.push_back(g.boxes[slot]); break;
+            }
+            g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
+        }
+        g.tris = std::move(tris);
+        g.spheres = std::move(spheres);
+        g.boxes = std::move(boxes);
+    } else {
+        g.order = std::move(b.entries);
+    }
+    g.verts.shrink_to_fit();
+    g.tris.shrink_to_fit();
+    g.order.shrink_to_fit();
+    return std::unique_ptr<Geometry>(new Geometry(std::move(impl)));
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,68 @@
+// Geometry's private state, shared by geometry_build.cpp (validation and construction) and
+// geometry.cpp (queries and surface data). Not part of the public interface.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "render/bvh.h"
+#include "render/geometry.h"
+#include "render/shapes.h"
+#include "render/transform.h"
+
+namespace wsd::render {
+
+// Entries of Impl::order: bit 31 transmissive, bits 29–30 the kind, bits 0–28 the slot.
+enum class PrimKind : uint32_t { Triangle = 0, Sphere = 1, Box = 2 };
+inline constexpr uint32_t kTransmissiveBit = 1u << 31;
+inline constexpr uint32_t kKindShift = 29;
+inline constexpr uint32_t kSlotMask = (1u << 29) - 1;
+inline constexpr size_t kMaxPrimitives = size_t{1} << 24;
+
+inline uint32_t encode_entry(PrimKind kind, uint32_t slot, bool transmissive) {
+    return (transmissive ? kTransmissiveBit : 0u) | (static_cast<uint32_t>(kind) << kKindShift) | slot;
+}
+
+struct ShapeInfo {
+    ShapeKind kind = ShapeKind::Sphere;
+    uint32_t material = 0;
+    uint32_t xform = 0;          // index into Impl::xforms (0 is the identity)
+    uint32_t first_prim = 0;     // canonical id of its first primitive
+    uint32_t extra = 0;          // triangle: index into tri_extra; plane: into plane_extra
+    uint32_t vertex_offset = 0;  // triangle, mesh: first vertex in Impl::verts
+    bool mirrored = false;       // det < 0: world winding is the reverse of the object's
+    std::shared_ptr<const MeshData> mesh;  // kept only when it has normals or uvs
+};
+
+struct TriExtra {
+    bool has_uv = false;
+    Vec2 uv[3];
+};
+
+struct PlaneExtra {
+    Vec3 u, v;  // object-frame plane axes
+    double uv_scale = 1;
+};
+
+struct Geometry::Impl {
+    std::vector<Vec3f> verts;  // world-space triangle vertices, shared within a mesh
+    std::vector<TriPrim> tris;
+    std::vector<SpherePrim> spheres;
+    std::vector<BoxPrim> boxes;
+    std::vector<PlanePrim> planes;
+    std::vector<Transform> xforms;
+    std::vector<ShapeInfo> shapes;
+    std::vector<uint32_t> shape_first;  // shapes[i].first_prim, for lookups by canonical id
+    std::vector<TriExtra> tri_extra;
+    std::vector<PlaneExtra> plane_extra;
+    std::vector<Bvh4Node> nodes;   // the BVH in its 4-wide traversal form; empty without BVH
+    std::vector<uint32_t> order;   // encoded entries; leaf ranges (BVH) or canonical order
+    bool use_bvh = true;
+    bool has_transmissive = false;
+    size_t primitive_count = 0;
+    int bvh_depth = 0;
+
+    uint32_t shape_of(uint32_t prim) const;
+};
+
+}  // namespace wsd::render

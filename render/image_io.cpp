@@ -1,0 +1,284 @@
+// Image files: PNG, JPEG, BMP, TGA (8-bit sRGB), Radiance HDR and PFM (linear float). Writes go
+// to a temporary file in the target's directory that is renamed over the target, so a failed or
+// interrupted write never leaves a partial image. The stb implementations live in stb_impl.cpp.
+#include "render/image_io.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <unistd.h>
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+namespace wsd::render {
+
+namespace {
+
+// Large enough for every image width·height the settings allow (2^28).
+constexpr long kMaxPixels = 1L << 28;
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+std::string quoted(const std::string& path) { return "'" + path + "'"; }
+
+uint8_t to_byte(float v) {
+    const double x = v > 0 ? std::min(double(v), 1.0) : 0.0;  // NaN → 0
+    return uint8_t(std::lround(srgb_encode(x) * 255.0));
+}
+
+// A FILE* sink for stb's *_to_func writers that remembers the first error.
+struct Sink {
+    std::FILE* file = nullptr;
+    int error = 0;
+};
+
+void sink_write(void* context, void* data, int size) {
+    auto* sink = static_cast<Sink*>(context);
+    if (sink->error || size <= 0) return;
+    if (std::fwrite(data, 1, size_t(size), sink->file) != size_t(size)) sink->error = errno ? errno : EIO;
+}
+
+bool encode(ImageFormat format, const Film& film, Sink& sink) {
+    const int w = film.width, h = film.height;
+    if (format == ImageFormat::Hdr) return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, film.rgb.data()) != 0;
+    if (format == ImageFormat::Pfm) {
+        const std::string header = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
+        sink_write(&sink, const_cast<char*>(header.data()), int(header.size()));
+        std::vector<unsigned char> row(size_t(w) * 12);
+        for (int y = h - 1; y >= 0; --y) {  // PFM stores the bottom row first
+            const float* src = film.rgb.data() + size_t(y) * size_t(w) * 3;
+            for (size_t i = 0; i < size_t(w) * 3; ++i) {
+                uint32_t bits = std::bit_cast<uint32_t>(src[i]);
+                if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
+                std::memcpy(&row[i * 4], &bits, 4);
+            }
+            sink_write(&sink, row.data(), int(row.size()));
+        }
+        return true;
+    }
+    std::vector<unsigned char> bytes(film.rgb.size());
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = to_byte(film.rgb[i]);
+    switch (format) {
+    case ImageFormat::Png: return stbi_write_png_to_func(sink_write, &sink, w, h, 3, bytes.data(), w * 3) != 0;
+    case ImageFormat::Jpeg: return stbi_write_jpg_to_func(sink_write, &sink, w, h, 3, bytes.data(), 95) != 0;
+    case ImageFormat::Bmp: return stbi_write_bmp_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
+    case ImageFormat::Tga: return stbi_write_tga_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
+    default: return false;
+    }
+}
+
+bool read_file(const std::string& path, std::vector<unsigned char>& data, std::string& error) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) {
+        error = "cannot read " + quoted(path) + ": " + std::strerror(errno);
+        return false;
+    }
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, std::fclose);
+    unsigned char buffer[65536];
+    size_t n;
+    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
+        data.insert(data.end(), buffer, buffer + n);
+        if (data.size() > size_t(INT_MAX)) {
+            error = "cannot read " + quoted(path) + ": file too large";
+            return false;
+        }
+    }
+    if (std::ferror(f)) {
+        error = "cannot read " + quoted(path) + ": " + std::strerror(errno ? errno : EIO);
+        return false;
+    }
+    return true;
+}
+
+// PFM: "PF" (RGB) or "Pf" (grey), width, height, scale (negative: little-endian), each separated by
+// whitespace, one whitespace byte, then rows of 32-bit floats from the bottom row up.
+bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, Film& film,
+              std::string& error) {
+    const char* p = reinterpret_cast<const char*>(data.data());
+    const char* end = p + data.size();
+    auto bad = [&](const char* why) {
+        error = "cannot read " + quoted(path) + ": malformed PFM file (" + why + ")";
+        return false;
+    };
+    auto skip_space = [&] {
+        while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+    };
+    if (end - p < 2 || p[0] != 'P' || (p[1] != 'F' && p[1] != 'f')) return bad("bad signature");
+    const int channels = p[1] == 'F' ? 3 : 1;
+    p += 2;
+    long w = 0, h = 0;
+    double scale = 0;
+    skip_space();
+    auto r1 = std::from_chars(p, end, w);
+    if (r1.ec != std::errc()) return bad("bad width");
+    p = r1.ptr;
+    skip_space();
+    auto r2 = std::from_chars(p, end, h);
+    if (r2.ec != std::errc()) return bad("bad height");
+    p = r2.ptr;
+    skip_space();
+    auto r3 = std::from_chars(p, end, scale);
+    if (r3.ec != std::errc() || !std::isfinite(scale) || scale == 0) return bad("bad scale");
+    p = r3.ptr;
+    if (p >= end || !std::isspace(static_cast<unsigned char>(*p))) return bad("no whitespace after the header");
+    ++p;
+    if (w < 1 || h < 1 || w > 100000 || h > 100000 || w * h > kMaxPixels) return bad("bad image size");
+    const size_t values = size_t(w) * size_t(h) * size_t(channels);
+    if (size_t(end - p) < values * 4) return bad("the pixel data is shorter than the header says");
+    const bool little = scale < 0;
+    const bool swap = little != (std::endian::native == std::endian::little);
+    film.width = int(w);
+    film.height = int(h);
+    film.rgb.assign(size_t(w) * size_t(h) * 3, 0.0f);
+    for (long y = 0; y < h; ++y) {
+        const long out_row = h - 1 - y;  // stored bottom row first
+        for (long x = 0; x < w; ++x) {
+            for (int c = 0; c < 3; ++c) {
+                const size_t src = (size_t(y) * size_t(w) + size_t(x)) * size_t(channels) + size_t(c % channels);
+                uint32_t bits;
+                std::memcpy(&bits, p + src * 4, 4);
+                if (swap) bits = __builtin_bswap32(bits);
+                film.rgb[(size_t(out_row) * size_t(w) + size_t(x)) * 3 + size_t(c)] = std::bit_cast<float>(bits);
+            }
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+ImageFormat format_from_extension(const std::string& path) {
+    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    if (ext == ".png") return ImageFormat::Png;
+    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::Jpeg;
+    if (ext == ".bmp") return ImageFormat::Bmp;
+    if (ext == ".tga") return ImageFormat::Tga;
+    if (ext == ".hdr") return ImageFormat::Hdr;
+    if (ext == ".pfm") return ImageFormat::Pfm;
+    return ImageFormat::Unknown;
+}
+
+double srgb_encode(double linear) {
+    if (linear <= 0.0031308) return 12.92 * linear;
+    return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double srgb_decode(double encoded) {
+    if (encoded <= 0.04045) return encoded / 12.92;
+    return std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+bool write_image(const std::string& path, const Film& film, std::string& error) {
+    const ImageFormat format = format_from_extension(path);
+    if (format == ImageFormat::Unknown) {
+        error = "cannot write " + quoted(path) +
+                ": unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)";
+        return false;
+    }
+    if (film.width < 1 || film.height < 1 || film.rgb.size() != size_t(film.width) * size_t(film.height) * 3) {
+        error = "cannot write " + quoted(path) + ": the image is empty";
+        return false;
+    }
+    const std::filesystem::path target(path);
+    std::string temp_name = ".";  // appended piecewise: GCC 12 warns (-Wrestrict) on a + chain
+    temp_name.append(target.filename().string()).append(".tmp-").append(std::to_string(::getpid()));
+    const std::filesystem::path temp = target.parent_path() / temp_name;
+    const std::string temp_str = temp.string();
+
+    Sink sink;
+    sink.file = std::fopen(temp_str.c_str(), "wb");
+    if (!sink.file) {
+        error = "cannot write " + quoted(path) + ": " + std::strerror(errno);
+        return false;
+    }
+    errno = 0;
+    const bool encoded = encode(format, film, sink);
+    if (std::fflush(sink.file) != 0 && !sink.error) sink.error = errno ? errno : EIO;
+    if (std::fclose(sink.file) != 0 && !sink.error) sink.error = errno ? errno : EIO;
+    if (!encoded || sink.error) {
+        std::remove(temp_str.c_str());
+        error = "cannot write " + quoted(path) + ": " +
+                (sink.error ? std::strerror(sink.error) : "the image could not be encoded in this format");
+        return false;
+    }
+    if (std::rename(temp_str.c_str(), path.c_str()) != 0) {
+        const int e = errno;
+        std::remove(temp_str.c_str());
+        error = "cannot write " + quoted(path) + ": " + std::strerror(e);
+        return false;
+    }
+    return true;
+}
+
+bool read_image(const std::string& path, Film& film, std::string& error) {
+    std::vector<unsigned char> data;
+    if (!read_file(path, data, error)) return false;
+    if (data.size() >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f'))
+        return read_pfm(path, data, film, error);
+    const int len = int(data.size());
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(data.data(), len, &w, &h, &comp)) {
+        error = "cannot read " + quoted(path) + ": not a supported image (" + stbi_failure_reason() + ")";
+        return false;
+    }
+    if (long(w) * long(h) > kMaxPixels) {
+        error = "cannot read " + quoted(path) + ": image too large";
+        return false;
+    }
+    const size_t n = size_t(w) * size_t(h) * 3;
+    if (stbi_is_hdr_from_memory(data.data(), len)) {
+        float* px = stbi_loadf_from_memory(data.data(), len, &w, &h, &comp, 3);
+        if (!px) {
+            error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
+            return false;
+        }
+        film.width = w;
+        film.height = h;
+        film.rgb.assign(px, px + n);
+        stbi_image_free(px);
+        return true;
+    }
+    if (stbi_is_16_bit_from_memory(data.data(), len)) {
+        uint16_t* px = stbi_load_16_from_memory(data.data(), len, &w, &h, &comp, 3);
+        if (!px) {
+            error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
+            return false;
+        }
+        film.width = w;
+        film.height = h;
+        film.rgb.resize(n);
+        for (size_t i = 0; i < n; ++i) film.rgb[i] = float(srgb_decode(px[i] / 65535.0));
+        stbi_image_free(px);
+        return true;
+    }
+    unsigned char* px = stbi_load_from_memory(data.data(), len, &w, &h, &comp, 3);
+    if (!px) {
+        error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
+        return false;
+    }
+    float table[256];
+    for (int i = 0; i < 256; ++i) table[i] = float(srgb_decode(i / 255.0));
+    film.width = w;
+    film.height = h;
+    film.rgb.resize(n);
+    for (size_t i = 0; i < n; ++i) film.rgb[i] = table[px[i]];
+    stbi_image_free(px);
+    return true;
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,164 @@
+// Image files for textures: decoding through stb_image (8-bit sRGB → linear through the exact
+// curve, 16-bit PNG through the same curve, HDR already linear), the per-scene cache that loads
+// each path once, and the bilinear lookup with wrap/clamp addressing (robustness.md T14, R49).
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <new>
+
+#include <stb_image.h>
+
+#include "render/texture.h"
+
+namespace wsd::render {
+
+namespace {
+
+double srgb_curve(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+const std::array<float, 256>& srgb8_table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (size_t i = 0; i < 256; ++i) t[i] = static_cast<float>(srgb_curve(static_cast<double>(i) / 255.0));
+        return t;
+    }();
+    return table;
+}
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+std::string stb_reason() {
+    const char* r = stbi_failure_reason();
+    return r ? r : "unknown decoding error";
+}
+
+// Decodes an already opened image file; `label` is the quoted path for messages.
+std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::string& error) {
+    int w = 0, h = 0, n = 0;
+    if (!stbi_info_from_file(f, &w, &h, &n)) {
+        error = "cannot decode image " + label + ": " + stb_reason();
+        return nullptr;
+    }
+    if (w <= 0 || h <= 0 || static_cast<long long>(w) * h > kMaxImagePixels) {
+        error = "image " + label + " is too large (" + std::to_string(w) + "x" + std::to_string(h) +
+                "; at most " + std::to_string(kMaxImagePixels) + " pixels)";
+        return nullptr;
+    }
+    auto image = std::make_shared<Image>();
+    const auto fail = [&] {
+        error = "cannot decode image " + label + ": " + stb_reason();
+        return nullptr;
+    };
+    if (stbi_is_hdr_from_file(f)) {
+        float* data = stbi_loadf_from_file(f, &w, &h, &n, 3);
+        if (!data) return fail();
+        const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
+        image->rgb.assign(data, data + count);
+        stbi_image_free(data);
+        // RGBE cannot encode NaN, but keep the promise that texture values are finite and >= 0.
+        for (float& c : image->rgb)
+            if (!(c >= 0.0f) || !std::isfinite(c)) c = 0.0f;
+    } else if (stbi_is_16_bit_from_file(f)) {
+        stbi_us* data = stbi_load_from_file_16(f, &w, &h, &n, 3);
+        if (!data) return fail();
+        const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
+        image->rgb.resize(count);
+        for (size_t i = 0; i < count; ++i)
+            image->rgb[i] = static_cast<float>(srgb_curve(static_cast<double>(data[i]) / 65535.0));
+        stbi_image_free(data);
+    } else {
+        stbi_uc* data = stbi_load_from_file(f, &w, &h, &n, 3);
+        if (!data) return fail();
+        const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
+        const auto& table = srgb8_table();
+        image->rgb.resize(count);
+        for (size_t i = 0; i < count; ++i) image->rgb[i] = table[data[i]];
+        stbi_image_free(data);
+    }
+    image->width = w;
+    image->height = h;
+    return image;
+}
+
+// Texel index along an axis: wrap into [0, n) or clamp to it. i is in [-1, n] here.
+inline size_t address(long long i, long long n, bool wrap) {
+    if (wrap) {
+        i %= n;
+        if (i < 0) i += n;
+    } else {
+        i = std::clamp(i, 0LL, n - 1);
+    }
+    return static_cast<size_t>(i);
+}
+
+}  // namespace
+
+float srgb8_to_linear(uint8_t v) { return srgb8_table()[v]; }
+
+std::shared_ptr<const Image> load_image(const std::string& path, std::string& error) {
+    const std::string label = "'" + path + "'";
+    FilePtr file(std::fopen(path.c_str(), "rb"));
+    if (!file) {
+        error = "cannot open image " + label + ": " + std::strerror(errno);
+        return nullptr;
+    }
+    // Refuse directories, FIFOs and devices: stb would fail late or, on a FIFO, block.
+    struct stat st {};
+    if (fstat(fileno(file.get()), &st) != 0 || !S_ISREG(st.st_mode)) {
+        error = "cannot read image " + label + ": not a regular file";
+        return nullptr;
+    }
+    try {
+        return decode(file.get(), label, error);
+    } catch (const std::bad_alloc&) {
+        error = "cannot load image " + label + ": out of memory";
+        return nullptr;
+    }
+}
+
+std::shared_ptr<const Image> ImageCache::get(const std::string& path, std::string& error) {
+    if (auto it = images_.find(path); it != images_.end()) return it->second;
+    auto image = load_image(path, error);
+    // Failures are not cached: the caller reports them, and a retry should try the file again.
+    if (image) images_.emplace(path, image);
+    return image;
+}
+
+Color sample_image(const Image& image, Vec2 uv, bool wrap_v) {
+    const long long w = image.width, h = image.height;
+    if (w <= 0 || h <= 0 || image.rgb.size() < static_cast<size_t>(w * h * 3)) return Color(0.0);
+    double u = std::isfinite(uv.x) ? uv.x : 0.0;
+    double v = std::isfinite(uv.y) ? uv.y : 0.0;
+    // Reduce to [0, 1] first so that huge coordinates never reach the integer conversion; the
+    // integer addressing below handles the u = 1 that u − floor(u) gives for tiny negative u.
+    u -= std::floor(u);
+    v = wrap_v ? v - std::floor(v) : std::clamp(v, 0.0, 1.0);
+    const double x = u * static_cast<double>(w) - 0.5;
+    const double y = v * static_cast<double>(h) - 0.5;
+    const double x0 = std::floor(x), y0 = std::floor(y);
+    const double fx = x - x0, fy = y - y0;
+    const auto xi = static_cast<long long>(x0), yi = static_cast<long long>(y0);
+    const size_t c0 = address(xi, w, true), c1 = address(xi + 1, w, true);
+    const size_t r0 = address(yi, h, wrap_v), r1 = address(yi + 1, h, wrap_v);
+    const size_t stride = static_cast<size_t>(w);
+    const auto texel = [&](size_t r, size_t c) {
+        const float* p = &image.rgb[(r * stride + c) * 3];
+        return Color(p[0], p[1], p[2]);
+    };
+    const Color top = (1.0 - fx) * texel(r0, c0) + fx * texel(r0, c1);
+    const Color bottom = (1.0 - fx) * texel(r1, c0) + fx * texel(r1, c1);
+    return (1.0 - fy) * top + fy * bottom;
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,431 @@
+// Whitted `trace` exactly as wsd-language.md §4 writes it:
+//   local  = (1 − t)·ambient·c + Σ_lights (1/n) Σ_s visible_s·light·[(1 − t)·c·diffuse·max(0, N·L_s)
+//                                                                  + specular·max(0, R_s·V)^shininess]
+//   colour = local + (r + t·F)·trace(reflected) + t·(1 − F)·c·trace(refracted)
+// Specialised on two scene properties (template parameters): transmissive objects (coloured shadow
+// transmittance, Fresnel, absorption) and adaptive area lights. The general tracer enables both and
+// tests every runtime condition; the two give identical images because the specialised one only
+// omits work whose result is exactly ×1 or +0.
+#include "render/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "render/sampling.h"
+#include "render/scene.h"
+
+namespace wsd::render {
+
+FresnelResult fresnel_refract(const Vec3& d, const Vec3& n, double eta) {
+    FresnelResult out;
+    const double cos_i = std::clamp(-glm::dot(d, n), -1.0, 1.0);
+    if (eta == 1.0) {  // an interface between equal indices is invisible, exactly
+        out.reflectance = 0;
+        out.refracted = d;
+        out.total_internal = false;
+        return out;
+    }
+    const double sin2_t = eta * eta * std::max(0.0, 1.0 - cos_i * cos_i);
+    if (sin2_t >= 1.0) return out;  // total internal reflection: F = 1
+    const double cos_t = std::sqrt(std::max(0.0, 1.0 - sin2_t));
+    const double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    out.reflectance = 0.5 * (rs * rs + rp * rp);
+    const Vec3 t = eta * d + (eta * cos_i - cos_t) * n;
+    out.refracted = t * (1.0 / std::sqrt(glm::dot(t, t)));
+    out.total_internal = false;
+    return out;
+}
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A shadow ray follows at most this many transmissive surfaces before it counts as blocked (only
+// reached by pathological stacks of glass; it bounds the loop, it is not a tolerance).
+constexpr int kMaxShadowCrossings = 1024;
+
+double max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+
+// Beer–Lambert transmittance along `distance` world units inside material m.
+Color absorb(const Material& m, double distance) {
+    if (!m.absorbs) return Color(1);
+    return glm::exp(-m.absorption * distance);
+}
+
+// A ray that never leaves an absorbing medium: 0 where the medium absorbs, 1 where it does not
+// (exp(−0·∞) would be NaN).
+Color absorb_forever(const Material& m) {
+    if (!m.absorbs) return Color(1);
+    return {m.absorption.x > 0 ? 0.0 : 1.0, m.absorption.y > 0 ? 0.0 : 1.0,
+            m.absorption.z > 0 ? 0.0 : 1.0};
+}
+
+struct Path {
+    uint64_t key;
+    int depth;    // reflections and refractions so far
+    Vec3 weight;  // product of the coefficients along the path
+    int medium;   // material index of the transmissive object the ray travels in, or −1
+};
+
+// Per-hit constants of the light loop, hoisted out of the sample loop.
+struct Shading {
+    Vec3 p, ng, N, V;
+    double nv;
+    bool diffuse;      // (1 − t)·diffuse > 0
+    double specular;   // the material's specular weight
+    double shininess;
+    Vec3 o_front, o_back;  // spawn origins on the ng side and the opposite side
+};
+
+struct Term {
+    double nl;  // max(0, N·L)
+    double sp;  // max(0, R·V)^shininess (0 without specular)
+    bool needed;
+};
+
+// The unshadowed terms for the light sample at sh.p + to_light. Samples with nothing to
+// contribute need no shadow ray.
+inline Term sample_term(const Shading& sh, const Vec3& to_light) {
+    const double d2 = glm::dot(to_light, to_light);
+    if (!(d2 > 0.0 && d2 < kInfinity)) return {0, 0, false};
+    const Vec3 L = to_light * (1.0 / std::sqrt(d2));
+    const double nl = glm::dot(sh.N, L);
+    double sp = 0;
+    if (sh.specular > 0) {
+        // R·V with R = 2(N·L)N − L, the mirror of L about N.
+        const double rv = 2.0 * nl * sh.nv - glm::dot(L, sh.V);
+        if (rv > 0) sp = std::pow(rv, sh.shininess);
+    }
+    const double dl = nl > 0 ? nl : 0.0;
+    return {dl, sp, (sh.diffuse && dl > 0) || sp > 0};
+}
+
+template <bool kTransmissive, bool kAdaptive>
+class WhittedTracer final : public Tracer {
+    // A shadow ray's transmittance: RGB when light can pass through glass, else 0 or 1.
+    using Vis = std::conditional_t<kTransmissive, Color, double>;
+
+public:
+    WhittedTracer(const Scene& scene, const TracerOptions& options, RayStats& stats)
+        : scene_(scene), geom_(scene.geometry()), materials_(scene.materials()),
+          lights_(scene.lights()), stats_(stats), force_adaptive_(options.adaptive_lights),
+          max_depth_(scene.settings().max_depth), bailout_(scene.settings().bailout),
+          background_(scene.settings().background) {
+        if constexpr (kAdaptive) {
+            size_t most = 0;
+            for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
+            vis_.resize(most);
+            state_.resize(most);
+        }
+    }
+
+    Color camera_sample(double px, double py, uint64_t key) override {
+        ++stats_.camera_rays;
+        return trace(scene_.camera().ray(px, py), Path{key, 0, Vec3(1), -1});
+    }
+
+    Color trace_ray(const Ray& ray, uint64_t key) override {
+        ++stats_.camera_rays;
+        return trace(ray, Path{key, 0, Vec3(1), -1});
+    }
+
+private:
+    Color trace(const Ray& ray, const Path& path) {
+        const auto hit = geom_.intersect(ray, kInfinity, stats_, RayFilter::All);
+        if (!hit) {
+            if constexpr (kTransmissive) {
+                if (path.medium >= 0) return background_ * absorb_forever(materials_[path.medium]);
+            }
+            return background_;
+        }
+        const SurfaceHit s = geom_.surface(ray, *hit);
+        const Material& m = materials_[s.material];
+        int medium = path.medium;
+        if constexpr (kTransmissive) {
+            // A ray with no known medium that reaches the inside of a transmissive surface was
+            // travelling inside that (closed) object, e.g. a camera placed inside glass.
+            if (medium < 0 && m.transmission > 0 && glm::dot(ray.d, s.ng) > 0)
+                medium = int(s.material);
+        }
+        Color c = shade(ray, s, m, path, medium);
+        if constexpr (kTransmissive) {
+            if (medium >= 0) c *= absorb(materials_[medium], hit->t);
+        }
+        return c;
+    }
+
+    Color shade(const Ray& ray, const SurfaceHit& s, const Material& m, const Path& path,
+                int medium) {
+        const Vec3 V = -ray.d;
+        // Inside/outside and every validity check use the geometric normal.
+        const bool front = glm::dot(ray.d, s.ng) < 0;
+        const Vec3 ng_v = front ? s.ng : -s.ng;
+        Vec3 ns = s.ns;
+        if (m.bump) ns = bump_normal(*m.bump, m.bump_strength, s, ns, scene_.object_to_world(s.shape), stats_);
+        // The shading normal, turned to the viewer's side of the surface.
+        const Vec3 N = glm::dot(ns, ng_v) < 0 ? -ns : ns;
+        const Color c = m.texture ? m.texture->eval(s, stats_) : m.color;
+        const double t = m.transmission;
+        const double r = m.reflection;
+
+        Color colour = (1.0 - t) * m.ambient * c;
+        colour += direct(s, m, N, V, c, t, path.key);
+        if (path.depth >= max_depth_ || (r <= 0 && t <= 0)) return colour;
+
+        double fresnel = 0;
+        Vec3 refl_dir{0}, refr_dir{0};
+        bool refracts = false;
+        if (kTransmissive && t > 0) {
+            ++stats_.fresnel_evals;
+            const double eta = front ? 1.0 / m.ior : m.ior;
+            // A bent normal may not send the reflected ray below the surface or the refracted ray
+            // to the viewer's side (robustness.md T11); if it would, use the geometric normal.
+            Vec3 n_use = glm::dot(N, V) > 0 ? N : ng_v;
+            refl_dir = reflect(ray.d, n_use);
+            FresnelResult fr = fresnel_refract(ray.d, n_use, eta);
+            if (n_use != ng_v && (glm::dot(refl_dir, ng_v) <= 0 ||
+                                  (!fr.total_internal && glm::dot(fr.refracted, ng_v) >= 0))) {
+                refl_dir = reflect(ray.d, ng_v);
+                fr = fresnel_refract(ray.d, ng_v, eta);
+            }
+            fresnel = fr.reflectance;
+            refracts = !fr.total_internal;
+            refr_dir = fr.refracted;
+        } else {
+            refl_dir = reflect(ray.d, N);
+            if (glm::dot(refl_dir, ng_v) <= 0) refl_dir = reflect(ray.d, ng_v);
+        }
+
+        const double w_refl = r + t * fresnel;
+        if (w_refl > 0) {
+            const Vec3 w = path.weight * w_refl;
+            if (max_component(w) >= bailout_) {
+                ++stats_.reflection_rays;
+                const Ray rr{Geometry::offset_origin(s, refl_dir), refl_dir};
+                colour += w_refl * trace(rr, Path{branch_key(path.key, 1), path.depth + 1, w, medium});
+            }
+        }
+        if constexpr (kTransmissive) {
+            if (refracts && t > 0 && fresnel < 1) {
+                const Color coef = t * (1.0 - fresnel) * c;
+                const Vec3 w = path.weight * coef;
+                const double wmax = max_component(w);
+                if (wmax > 0 && wmax >= bailout_) {
+                    ++stats_.refraction_rays;
+                    const Ray tr{Geometry::offset_origin(s, refr_dir), refr_dir};
+                    // Media do not nest: entering puts the ray inside this object, leaving outside.
+                    const int inside = front ? int(s.material) : -1;
+                    colour += coef * trace(tr, Path{branch_key(path.key, 2), path.depth + 1, w, inside});
+                }
+            }
+        }
+        return colour;
+    }
+
+    // Σ_lights (1/n) Σ_s visible_s·light·[(1 − t)·c·diffuse·max(0, N·L_s) + specular·max(0, R_s·V)^p]
+    Color direct(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V,
+                 const Color& c, double t, uint64_t key) {
+        const double kd = (1.0 - t) * m.diffuse;
+        if (lights_.empty() || (!(kd > 0) && !(m.specular > 0))) return Color(0);
+        Shading sh;
+        sh.p = s.p;
+        sh.ng = s.ng;
+        sh.N = N;
+        sh.V = V;
+        sh.nv = glm::dot(N, V);
+        sh.diffuse = kd > 0;
+        sh.specular = m.specular;
+        sh.shininess = m.shininess;
+        sh.o_front = Geometry::offset_origin(s, s.ng);
+        sh.o_back = Geometry::offset_origin(s, -s.ng);
+
+        Color sum(0);
+        for (size_t li = 0; li < lights_.size(); ++li) {
+            const Light& light = lights_[li];
+            Vis sd(0), ss(0);
+            if (!light.area) {
+                const Vec3 to_light = light.position - sh.p;
+                const Term term = sample_term(sh, to_light);
+                if (term.needed) {
+                    const Vis v = visibility(sh, to_light, light.position);
+                    sd += v * term.nl;
+                    ss += v * term.sp;
+                }
+            } else if (kAdaptive && (light.adaptive || force_adaptive_) && light.count() > 1) {
+                adaptive_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
+            } else {
+                full_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
+            }
+            sum += light.radiance * (kd * c * sd + m.specular * ss) * light.inv_count;
+        }
+        return sum;
+    }
+
+    Vec3 cell_point(const Light& light, uint64_t lkey, int i, int j) const {
+        const uint32_t cell = uint32_t(j * light.nu + i);
+        const Uniform2 xi = light.uniform ? Uniform2{0.5, 0.5} : cell_jitter(lkey, cell);
+        return light.cell_point(i, j, xi.u, xi.v);
+    }
+
+    // Every cell gets its own shadow ray (the hot loop: no allocation, no virtual call).
+    void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
+        for (int j = 0; j < light.nv; ++j) {
+            for (int i = 0; i < light.nu; ++i) {
+                const Vec3 P = cell_point(light, lkey, i, j);
+                const Vec3 to_light = P - sh.p;
+                const Term term = sample_term(sh, to_light);
+                if (!term.needed) continue;
+                const Vis v = visibility(sh, to_light, P);
+                sd += v * term.nl;
+                ss += v * term.sp;
+            }
+        }
+    }
+
+    // Adaptive sampling, as POV-Ray's `adaptive`: shadow rays to the four corner cells and the
+    // centre cell; if they agree, their visibility stands for every cell. Otherwise the grid is
+    // refined recursively: a sub-rectangle whose four corner cells agree takes their visibility,
+    // one whose corners disagree is split in two along each side longer than two cells. The
+    // shading terms are then summed over every cell's own direction, in the same order as
+    // full_area, so fully lit and fully shadowed points give exactly the full grid's value.
+    void adaptive_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
+        const int nu = light.nu, nv = light.nv;
+        std::fill(state_.begin(), state_.begin() + light.count(), uint8_t(0));
+        auto probe = [&](int i, int j) -> const Vis& {
+            const size_t cell = size_t(j * nu + i);
+            if (state_[cell] != kProbed) {
+                const Vec3 P = cell_point(light, lkey, i, j);
+                vis_[cell] = visibility(sh, P - sh.p, P);
+                state_[cell] = kProbed;
+            }
+            return vis_[cell];
+        };
+        const Vis a = probe(0, 0);
+        const bool agree = probe(nu - 1, 0) == a && probe(0, nv - 1) == a &&
+                           probe(nu - 1, nv - 1) == a && probe(nu / 2, nv / 2) == a;
+        if (agree)
+            fill(nu, 0, 0, nu - 1, nv - 1, a);
+        else
+            refine(probe, nu, 0, 0, nu - 1, nv - 1);
+        for (int j = 0; j < nv; ++j) {
+            for (int i = 0; i < nu; ++i) {
+                const Vec3 P = cell_point(light, lkey, i, j);
+                const Term term = sample_term(sh, P - sh.p);
+                if (!term.needed) continue;
+                const Vis& v = vis_[size_t(j * nu + i)];
+                sd += v * term.nl;
+                ss += v * term.sp;
+            }
+        }
+    }
+
+    template <class Probe>
+    void refine(Probe& probe, int nu, int i0, int j0, int i1, int j1) {
+        // All four corners are probed (no short-circuit): a region of at most 2×2 cells is
+        // then complete.
+        const Vis a = probe(i0, j0), b = probe(i1, j0), c = probe(i0, j1), d = probe(i1, j1);
+        if (b == a && c == a && d == a) {
+            fill(nu, i0, j0, i1, j1, a);
+            return;
+        }
+        if (i1 - i0 <= 1 && j1 - j0 <= 1) return;  // every cell is a corner
+        const int im = (i0 + i1) / 2, jm = (j0 + j1) / 2;
+        const bool split_i = i1 - i0 >= 2, split_j = j1 - j0 >= 2;
+        const int is[3] = {i0, split_i ? im : i1, i1};
+        const int js[3] = {j0, split_j ? jm : j1, j1};
+        for (int jb = 0; jb < (split_j ? 2 : 1); ++jb)
+            for (int ib = 0; ib < (split_i ? 2 : 1); ++ib)
+                refine(probe, nu, is[ib], js[jb], split_i ? is[ib + 1] : i1, split_j ? js[jb + 1] : j1);
+    }
+
+    // Cells not probed yet take the visibility of the region's agreeing corners.
+    void fill(int nu, int i0, int j0, int i1, int j1, const Vis& v) {
+        for (int j = j0; j <= j1; ++j) {
+            for (int i = i0; i <= i1; ++i) {
+                const size_t cell = size_t(j * nu + i);
+                if (state_[cell] == kUnknown) {
+                    vis_[cell] = v;
+                    state_[cell] = kFilled;
+                }
+            }
+        }
+    }
+
+    // The shadow ray from the spawn origin on the light's side to P (d = P − origin, tmax = 1).
+    Vis visibility(const Shading& sh, const Vec3& to_light, const Vec3& P) {
+        const Vec3 origin = glm::dot(to_light, sh.ng) < 0 ? sh.o_back : sh.o_front;
+        const Ray ray{origin, P - origin};
+        ++stats_.shadow_rays;
+        if (geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly)) return Vis(0);
+        if constexpr (kTransmissive) {
+            if (!scene_.may_cross_transmissive(origin, P)) return Color(1);
+            return transmittance(origin, P);
+        } else {
+            return 1.0;
+        }
+    }
+
+    // Light passing through transmissive surfaces, unbent: ×t·c at each surface crossed and
+    // Beer–Lambert absorption along each segment inside an object.
+    Color transmittance(const Vec3& origin, const Vec3& P) {
+        Color T(1);
+        Vec3 cur = origin, seg_start = origin;
+        int inside = -1;  // the object entered last, if its exit has not been crossed yet
+        for (int k = 0; k < kMaxShadowCrossings; ++k) {
+            const Ray ray{cur, P - cur};
+            ++stats_.shadow_rays;
+            const auto hit = geom_.intersect(ray, 1.0, stats_, RayFilter::TransmissiveOnly);
+            if (!hit) {
+                if (inside >= 0) T *= absorb(materials_[inside], glm::length(P - seg_start));
+                return T;
+            }
+            const SurfaceHit s = geom_.surface(ray, *hit);
+            const Material& m = materials_[s.material];
+            const Color c = m.texture ? m.texture->eval(s, stats_) : m.color;
+            T *= m.transmission * c;
+            if (glm::dot(ray.d, s.ng) > 0) {  // leaving the object: the segment was inside it
+                T *= absorb(m, glm::length(s.p - seg_start));
+                inside = -1;
+            } else {
+                seg_start = s.p;
+                inside = int(s.material);
+            }
+            if (T == Color(0)) return T;
+            cur = Geometry::offset_origin(s, ray.d);
+        }
+        return Color(0);
+    }
+
+    static constexpr uint8_t kUnknown = 0, kFilled = 1, kProbed = 2;
+
+    const Scene& scene_;
+    const Geometry& geom_;
+    const std::vector<Material>& materials_;
+    const std::vector<Light>& lights_;
+    RayStats& stats_;
+    bool force_adaptive_;
+    int max_depth_;
+    double bailout_;
+    Color background_;
+    std::vector<Vis> vis_;        // adaptive lights: per-cell visibility of the current point
+    std::vector<uint8_t> state_;  // adaptive lights: kUnknown, kFilled or kProbed per cell
+};
+
+}  // namespace
+
+std::unique_ptr<Tracer> make_tracer(const Scene& scene, const TracerOptions& options, RayStats& stats) {
+    if (!options.specialise) return std::make_unique<WhittedTracer<true, true>>(scene, options, stats);
+    const bool transmissive =
+        scene.geometry().has_transmissive() || scene.effects().has(Effect::Refraction);
+    const bool adaptive = scene.effects().has(Effect::AdaptiveLights) ||
+                          (options.adaptive_lights && scene.has_multi_cell_area_light());
+    if (transmissive && adaptive) return std::make_unique<WhittedTracer<true, true>>(scene, options, stats);
+    if (transmissive) return std::make_unique<WhittedTracer<true, false>>(scene, options, stats);
+    if (adaptive) return std::make_unique<WhittedTracer<false, true>>(scene, options, stats);
+    return std::make_unique<WhittedTracer<false, false>>(scene, options, stats);
+}
+
+}  // namespace wsd::render

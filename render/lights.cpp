@@ -1,0 +1,54 @@
+// Light validation (robustness.md R45, R63) and preparation of the per-light shading constants.
+#include "render/lights.h"
+
+#include <cmath>
+
+namespace wsd::render {
+
+namespace {
+
+bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+}  // namespace
+
+std::optional<std::string> validate_light(const LightSpec& spec) {
+    if (!finite3(spec.position)) return "light position must be finite";
+    if (!finite3(spec.color) || spec.color.x < 0 || spec.color.y < 0 || spec.color.z < 0)
+        return "light color must be finite and non-negative";
+    if (!std::isfinite(spec.intensity) || spec.intensity < 0)
+        return "light intensity must be finite and non-negative";
+    if (spec.kind == LightKind::Point) return std::nullopt;
+    if (!finite3(spec.u) || !finite3(spec.v)) return "area light edges u and v must be finite";
+    const double lu = glm::length(spec.u), lv = glm::length(spec.v);
+    if (!(lu > 0)) return "area light edge u must be non-zero";
+    if (!(lv > 0)) return "area light edge v must be non-zero";
+    // Parallel edges: the sine of the angle between u and v (dimensionless) vanishes.
+    if (!(glm::length(glm::cross(spec.u / lu, spec.v / lv)) > 1e-9))
+        return "area light edges u and v must not be parallel";
+    if (spec.samples_u < 1 || spec.samples_v < 1 || spec.samples_u > kMaxLightGridSide ||
+        spec.samples_v > kMaxLightGridSide)
+        return "area light samples must be between 1 and 1024 in each direction";
+    if (long(spec.samples_u) * long(spec.samples_v) > kMaxLightSamples)
+        return "area light sample grid must have at most 65536 cells";
+    return std::nullopt;
+}
+
+Light prepare_light(const LightSpec& spec) {
+    Light l;
+    l.position = spec.position;
+    l.radiance = spec.color * spec.intensity;
+    if (spec.kind == LightKind::Area) {
+        l.area = true;
+        l.nu = spec.samples_u;
+        l.nv = spec.samples_v;
+        l.corner = spec.position - 0.5 * spec.u - 0.5 * spec.v;
+        l.du = spec.u / double(l.nu);
+        l.dv = spec.v / double(l.nv);
+        l.uniform = spec.sampling == LightSampling::Uniform;
+        l.adaptive = spec.adaptive;
+        l.inv_count = 1.0 / double(l.nu * l.nv);
+    }
+    return l;
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,279 @@
+// render(): the image (or a region of it) cut into 16×16 tiles handed to std::thread workers
+// through an atomic counter. Each worker has its own tracer and RayStats (summed under a lock
+// once per tile); the calling thread only reports progress. Pixels: 1 centre ray, or a jittered
+// grid averaged (box filter), or adaptive supersampling in two phases: centre rays over the
+// region plus a 1-pixel border, then the full grid where a neighbour's display value differs.
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <barrier>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "render/image_io.h"
+#include "render/integrator.h"
+#include "render/sampling.h"
+#include "render/scene.h"
+
+namespace wsd::render {
+
+namespace {
+
+constexpr int kTileSize = 16;
+// The sample index of the adaptive prepass's centre ray (distinct from the grid's indices).
+constexpr uint32_t kCentreSample = 0xffffffffu;
+
+using Clock = std::chrono::steady_clock;
+
+bool finite3(const Color& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+std::vector<Region> make_tiles(const Region& r) {
+    std::vector<Region> tiles;
+    for (int y = r.y0; y < r.y1; y += kTileSize)
+        for (int x = r.x0; x < r.x1; x += kTileSize)
+            tiles.push_back({x, y, std::min(x + kTileSize, r.x1), std::min(y + kTileSize, r.y1)});
+    return tiles;
+}
+
+size_t area(const Region& r) { return size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0); }
+
+// The adaptive prepass: each pixel's centre sample over `rect` (the region plus a 1-pixel
+// border, clipped to the image), and its display value (clamped, sRGB-encoded) for comparisons.
+struct Prepass {
+    Region rect;
+    std::vector<Color> centre;
+    std::vector<Vec3> display;
+    size_t index(int x, int y) const {
+        return size_t(y - rect.y0) * size_t(rect.x1 - rect.x0) + size_t(x - rect.x0);
+    }
+};
+
+// Renders tiles into a film (and the prepass) for one worker thread.
+class TileRenderer {
+public:
+    TileRenderer(const Scene& scene, Tracer& tracer, RayStats& stats, Film& film, const Region& region,
+                 Prepass& prepass)
+        : tracer_(tracer), stats_(stats), film_(film), region_(region), prepass_(prepass),
+          seed_(scene.settings().seed), samples_(scene.settings().supersamples),
+          grid_(supersample_grid(scene.settings().supersamples)),
+          threshold_(scene.settings().aa_threshold) {}
+
+    void render(const Region& t) {
+        for (int y = t.y0; y < t.y1; ++y)
+            for (int x = t.x0; x < t.x1; ++x) store(x, y, full_pixel(x, y));
+    }
+
+    // Phase 1 of adaptive supersampling.
+    void render_centres(const Region& t) {
+        for (int y = t.y0; y < t.y1; ++y) {
+            for (int x = t.x0; x < t.x1; ++x) {
+                const size_t i = prepass_.index(x, y);
+                const uint64_t key = sample_key(pixel_key(seed_, x, y), kCentreSample);
+                prepass_.centre[i] = guarded(tracer_.camera_sample(x + 0.5, y + 0.5, key));
+                const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
+                prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
+            }
+        }
+    }
+
+    // Phase 2: the full grid where the centre value differs from one of its 4 neighbours' by more
+    // than the threshold in some channel; the centre value elsewhere.
+    void render_adaptive(const Region& t) {
+        const Region& p = prepass_.rect;
+        const size_t row = size_t(p.x1 - p.x0);
+        auto differs = [&](size_t a, size_t b) {
+            const Vec3 d = glm::abs(prepass_.display[a] - prepass_.display[b]);
+            return d.x > threshold_ || d.y > threshold_ || d.z > threshold_;
+        };
+        for (int y = t.y0; y < t.y1; ++y) {
+            for (int x = t.x0; x < t.x1; ++x) {
+                const size_t i = prepass_.index(x, y);
+                const bool refine = (x > p.x0 && differs(i, i - 1)) || (x + 1 < p.x1 && differs(i, i + 1)) ||
+                                    (y > p.y0 && differs(i, i - row)) || (y + 1 < p.y1 && differs(i, i + row));
+                if (refine) {
+                    ++stats_.adaptive_pixels;
+                    store(x, y, full_pixel(x, y));
+                } else {
+                    store(x, y, prepass_.centre[i]);
+                }
+            }
+        }
+    }
+
+private:
+    Color guarded(const Color& c) {
+        if (finite3(c)) return c;
+        ++stats_.nonfinite_samples;
+        return Color(0);
+    }
+
+    // The box-filtered average of the pixel's camera samples (1 = its centre).
+    Color full_pixel(int x, int y) {
+        const uint64_t pk = pixel_key(seed_, x, y);
+        if (samples_ == 1) return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
+        Color sum(0);
+        for (int r = 0; r < grid_.rows; ++r) {
+            for (int c = 0; c < grid_.cols; ++c) {
+                const uint64_t key = sample_key(pk, uint32_t(r * grid_.cols + c));
+                const Uniform2 j = camera_jitter(key);
+                const double px = x + (c + j.u) / grid_.cols;
+                const double py = y + (r + j.v) / grid_.rows;
+                sum += guarded(tracer_.camera_sample(px, py, key));
+            }
+        }
+        return sum / double(samples_);
+    }
+
+    void store(int x, int y, const Color& c) {
+        const size_t i = 3 * (size_t(y - region_.y0) * size_t(film_.width) + size_t(x - region_.x0));
+        const float v[3] = {float(c.x), float(c.y), float(c.z)};
+        const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+        if (!ok) ++stats_.nonfinite_samples;  // a finite double too large for a float
+        for (int k = 0; k < 3; ++k) film_.rgb[i + size_t(k)] = ok ? v[k] : 0.0f;
+    }
+
+    Tracer& tracer_;
+    RayStats& stats_;
+    Film& film_;
+    Region region_;
+    Prepass& prepass_;
+    uint32_t seed_;
+    int samples_;
+    SampleGrid grid_;
+    double threshold_;
+};
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderOptions& options) {
+    const auto start = Clock::now();
+    RenderResult result;
+    result.build_seconds = scene.build_seconds();
+    EffectSet effects = scene.effects();
+    if (options.adaptive_lights && scene.has_multi_cell_area_light()) effects.add(Effect::AdaptiveLights);
+    result.effects = effects.names();
+
+    const Settings& settings = scene.settings();
+    Region region = options.region.value_or(Region{0, 0, settings.width, settings.height});
+    region.x0 = std::clamp(region.x0, 0, settings.width);
+    region.x1 = std::clamp(region.x1, region.x0, settings.width);
+    region.y0 = std::clamp(region.y0, 0, settings.height);
+    region.y1 = std::clamp(region.y1, region.y0, settings.height);
+    Film& film = result.film;
+    film.width = region.x1 - region.x0;
+    film.height = region.y1 - region.y0;
+    film.rgb.assign(area(region) * 3, 0.0f);
+
+    const bool adaptive = settings.adaptive_supersampling && settings.supersamples > 1 && area(region) > 0;
+    Prepass prepass;
+    std::vector<Region> prepass_tiles;
+    if (adaptive) {
+        prepass.rect = {std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0),
+                        std::min(region.x1 + 1, settings.width), std::min(region.y1 + 1, settings.height)};
+        prepass.centre.resize(area(prepass.rect));
+        prepass.display.resize(area(prepass.rect));
+        prepass_tiles = make_tiles(prepass.rect);
+    }
+    const std::vector<Region> tiles = make_tiles(region);
+    const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
+
+    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, int(std::max({size_t(1), tiles.size(), prepass_tiles.size()})));
+
+    std::atomic<size_t> next_prepass{0}, next_tile{0};
+    std::barrier phase_end(threads);
+    std::mutex mutex;
+    std::condition_variable done_cv;
+    RayStats total;
+    size_t work_done = 0, pixels_done = 0;
+    int running = threads;
+    std::exception_ptr failure;
+    const TracerOptions tracer_options{options.specialise, options.adaptive_lights};
+    auto cancelled = [&options] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
+
+    auto worker = [&] {
+        RayStats local;
+        std::unique_ptr<Tracer> tracer;
+        std::unique_ptr<TileRenderer> out;
+        auto publish = [&](const Region& t, bool final_pixels) {
+            std::lock_guard lock(mutex);
+            total += local;
+            work_done += area(t);
+            if (final_pixels) pixels_done += area(t);
+            local = RayStats{};
+        };
+        auto guarded = [&](auto&& body) {
+            try {
+                body();
+            } catch (...) {
+                std::lock_guard lock(mutex);
+                if (!failure) failure = std::current_exception();
+            }
+        };
+        guarded([&] {
+            tracer = make_tracer(scene, tracer_options, local);
+            out = std::make_unique<TileRenderer>(scene, *tracer, local, film, region, prepass);
+            while (!cancelled()) {
+                const size_t i = next_prepass.fetch_add(1, std::memory_order_relaxed);
+                if (i >= prepass_tiles.size()) break;
+                out->render_centres(prepass_tiles[i]);
+                publish(prepass_tiles[i], false);
+            }
+        });
+        // Every worker arrives, whatever happened, so that none waits forever.
+        if (adaptive) phase_end.arrive_and_wait();
+        guarded([&] {
+            if (!out) return;
+            while (!cancelled()) {
+                {
+                    std::lock_guard lock(mutex);
+                    if (failure) break;
+                }
+                const size_t i = next_tile.fetch_add(1, std::memory_order_relaxed);
+                if (i >= tiles.size()) break;
+                if (adaptive)
+                    out->render_adaptive(tiles[i]);
+                else
+                    out->render(tiles[i]);
+                publish(tiles[i], true);
+            }
+        });
+        std::lock_guard lock(mutex);
+        --running;
+        done_cv.notify_all();
+    };
+
+    std::vector<std::thread> pool;
+    pool.reserve(size_t(threads));
+    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    {
+        std::unique_lock lock(mutex);
+        auto last = Clock::now();
+        while (running > 0) {
+            done_cv.wait_for(lock, std::chrono::milliseconds(250));
+            if (options.progress && running > 0 && Clock::now() - last >= std::chrono::milliseconds(250)) {
+                const RayStats snapshot = total;
+                const double fraction = double(work_done) / total_work;
+                lock.unlock();
+                options.progress(fraction, snapshot);
+                lock.lock();
+                last = Clock::now();
+            }
+        }
+    }
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+
+    result.stats = total;
+    // Only a cancellation leaves pixels unrendered.
+    result.cancelled = pixels_done < area(region);
+    if (options.progress && !result.cancelled) options.progress(1.0, result.stats);
+    result.render_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return result;
+}
+
+}  // namespace wsd::render
