@@ -1,0 +1,146 @@
+// The command line: one CLI11 subcommand per command, value checks that make bad values usage
+// errors (status 2), and the mapping of CLI11's own errors onto wsd's exit statuses.
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+
+namespace wsd::app {
+
+namespace {
+
+struct RenderOptionRefs {
+    int width = 0, height = 0, supersamples = 0, light_samples = 0, max_depth = 0;
+    long long seed = 0;
+    bool adaptive_aa = false;
+    CLI::Option *o_width = nullptr, *o_height = nullptr, *o_supersamples = nullptr,
+                *o_light_samples = nullptr, *o_max_depth = nullptr, *o_seed = nullptr;
+
+    void add(CLI::App& cmd) {
+        o_width = cmd.add_option("--width", width, "image width in pixels (replaces the scene's)")
+                      ->check(CLI::Range(1, max_image_side));
+        o_height = cmd.add_option("--height", height, "image height in pixels")
+                       ->check(CLI::Range(1, max_image_side));
+        o_supersamples = cmd.add_option("--supersamples", supersamples, "rays per pixel")
+                             ->check(CLI::Range(1, max_supersamples));
+        o_light_samples =
+            cmd.add_option("--light-samples", light_samples, "every area light becomes an N×N grid")
+                ->check(CLI::Range(1, max_light_grid_side));
+        o_max_depth = cmd.add_option("--max-depth", max_depth, "reflection/refraction depth limit")
+                          ->check(CLI::Range(0, max_depth_limit));
+        o_seed = cmd.add_option("--seed", seed, "random seed (0 … 4294967295)")
+                     ->check(CLI::Range(0LL, 4294967295LL));
+        cmd.add_flag("--adaptive-aa", adaptive_aa, "adaptive supersampling (full grid only at edges)");
+    }
+
+    SceneOverrides overrides() const {
+        SceneOverrides o;
+        if (o_width->count()) o.width = width;
+        if (o_height->count()) o.height = height;
+        if (o_supersamples->count()) o.supersamples = supersamples;
+        if (o_light_samples->count()) o.light_samples = light_samples;
+        if (o_max_depth->count()) o.max_depth = max_depth;
+        if (o_seed->count()) o.seed = static_cast<uint32_t>(seed);
+        if (adaptive_aa) o.adaptive_supersampling = true;
+        return o;
+    }
+};
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+    if (std::getenv("WSD_TEST_INTERNAL_ERROR"))  // lets the tests reach exit status 4
+        throw std::logic_error("forced by WSD_TEST_INTERNAL_ERROR");
+
+    CLI::App app{"wsd: a scene-description language and a Whitted ray tracer", "wsd"};
+    app.set_version_flag("--version", std::string("wsd ") + WSD_VERSION);
+    app.require_subcommand(1);
+    app.footer("Exit status: 0 ok, 1 input errors, 2 usage errors, 3 unreadable input or "
+               "unwritable output, 4 internal error, 130/143 interrupted.");
+
+    CheckArgs check_args;
+    CLI::App* check = app.add_subcommand("check", "parse, evaluate, load referenced files and validate; render nothing");
+    check->add_option("FILE", check_args.files, "scene files (.wsd) or fragments (.wsdi); - = stdin")->required();
+    check->add_flag("--effects", check_args.effects, "list the effects the scene uses and the objects that call for each");
+
+    AstArgs ast_args;
+    CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
+    ast->add_option("FILE", ast_args.file, "scene file; - = stdin")->required();
+
+    RenderArgs render_args;
+    RenderOptionRefs render_refs;
+    CLI::App* render = app.add_subcommand("render", "render an image");
+    render->add_option("SCENE", render_args.scene, "scene file; - = stdin")->required();
+    render->add_option("-o,--output", render_args.output,
+                       "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
+    render_refs.add(*render);
+    render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
+        ->check(CLI::Range(0, 4096));
+    render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
+    render->add_flag("--stats", render_args.stats, "print render statistics at the end");
+    render->add_option("--stats-json", render_args.stats_json, "write render statistics as JSON");
+    render->add_flag("-q,--quiet", render_args.quiet, "no progress output");
+    render->add_flag("--adaptive-lights", render_args.adaptive_lights, "adaptive sampling on every area light");
+    render->add_option("--tile", render_args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
+    render->add_option("--region", render_args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+
+    DiffArgs diff_args;
+    CLI::App* diff = app.add_subcommand("diff", "compare two images (RMSE, PSNR, max error, SSIM)");
+    diff->add_option("A", diff_args.a, "first image")->required();
+    diff->add_option("B", diff_args.b, "second image")->required();
+    diff->add_option("-o,--output", diff_args.heatmap, "write a heat map of the per-pixel error");
+
+    MergeArgs merge_args;
+    CLI::App* merge = app.add_subcommand("merge", "assemble tiles rendered with --tile or --region");
+    merge->add_option("TILE", merge_args.tiles, "tile files (.pfm)")->required();
+    merge->add_option("-o,--output", merge_args.output, "output image")->required();
+
+    BenchArgs bench_args;
+    CLI::App* bench = app.add_subcommand("bench", "measure error against time for each setting");
+    bench->add_option("SCENE", bench_args.scene, "scene file")->required();
+    bench->add_option("-o,--output", bench_args.dir, "directory for bench.csv, bench.md, bench.svg (default .)");
+    bench->add_option("--repeat", bench_args.repeat, "runs per setting; the median is reported (default 3, or 1 with --quick)")
+        ->check(CLI::Range(1, 1000));
+    bench->add_flag("--quick", bench_args.quick, "a small sweep at a small size (at most 32 pixels a side; for tests)");
+    bench->add_option("--reference-supersamples", bench_args.reference_supersamples,
+                      "supersamples of the reference image (default 64)")
+        ->check(CLI::Range(1, max_supersamples));
+    bench->add_option("--reference-light-samples", bench_args.reference_light_samples,
+                      "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
+        ->check(CLI::Range(1, max_light_grid_side));
+    bench->add_option("--reference-depth", bench_args.reference_depth,
+                      "max depth of the reference (default max(scene, 10))")
+        ->check(CLI::Range(0, max_depth_limit));
+    bench->add_option("--threads", bench_args.threads, "render threads; 0 = all cores")->check(CLI::Range(0, 4096));
+    bench->add_option("--width", bench_args.width, "image width (default the scene's)")->check(CLI::Range(1, max_image_side));
+    bench->add_option("--height", bench_args.height, "image height")->check(CLI::Range(1, max_image_side));
+    bench->add_flag("-q,--quiet", bench_args.quiet, "no progress output");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+            app.exit(e);  // --help, --version
+            return exit_code::ok;
+        }
+        std::cerr << "wsd: error: " << e.what() << "\nRun `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
+        return exit_code::usage;
+    }
+
+    if (*check) return run_check(check_args);
+    if (*ast) return run_ast(ast_args);
+    if (*render) {
+        render_args.overrides = render_refs.overrides();
+        return run_render(render_args);
+    }
+    if (*diff) return run_diff(diff_args);
+    if (*merge) return run_merge(merge_args);
+    if (*bench) return run_bench(bench_args);
+    return exit_code::usage;
+}
+
+}  // namespace wsd::app

@@ -1,0 +1,252 @@
+// `wsd bench SCENE`: renders a high-quality reference, then sweeps one knob at a time around the
+// scene's own settings (supersamples, light samples, max depth, adaptive supersampling, adaptive
+// lights), timing each setting (median of --repeat runs) and measuring its error against the
+// reference. Every render goes through lang::load_scene and render::render, like `wsd render`.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/bench_report.h"
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/io_util.h"
+#include "app/progress.h"
+#include "app/signals.h"
+
+namespace wsd::app {
+
+namespace {
+
+constexpr int quick_max_side = 32;
+
+struct Setting {
+    std::string knob, value;
+    SceneOverrides overrides;
+};
+
+struct SceneFacts {
+    int width = 0, height = 0, supersamples = 1, max_depth = 0;
+    bool area_lights = false;
+    std::string light_grid;  // of the first area light, e.g. "4x4"
+};
+
+double cpu_seconds_now() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// One setting: load and build once, render `repeat` times. Returns an exit status.
+struct RunResult {
+    render::Film film;
+    render::RayStats stats;
+    double wall = 0, cpu = 0;
+};
+
+int run_setting(const std::string& path, const std::string& text, const SceneOverrides& overrides,
+                const BenchArgs& args, int repeat, const CancelOnSignal& signals,
+                const std::string& label, RunResult& out) {
+    lang::LoadOptions load_options;
+    load_options.threads = args.threads;
+    load_options.adjust = [&](render::SceneSpec& spec) { overrides.apply(spec); };
+    lang::SourceManager sources;
+    std::optional<lang::LoadedScene> loaded;
+    if (const int s = load_scene_text(path, text, load_options, sources, loaded); s != exit_code::ok) return s;
+    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    std::vector<double> walls, cpus;
+    for (int r = 0; r < repeat; ++r) {
+        ProgressReporter progress(progress_mode(args.quiet), label);
+        render::RenderOptions options;
+        options.threads = args.threads;
+        options.cancel = signals.flag();
+        options.progress = [&](double fraction, const render::RayStats& so_far) { progress.update(fraction, so_far); };
+        const double cpu0 = cpu_seconds_now();
+        const auto wall0 = std::chrono::steady_clock::now();
+        render::RenderResult result = render::render(*loaded->scene, options);
+        walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
+        cpus.push_back(cpu_seconds_now() - cpu0);
+        progress.finish(!result.cancelled);
+        if (result.cancelled || signals.cancelled())
+            return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
+        out.film = std::move(result.film);
+        out.stats = result.stats;
+    }
+    out.wall = median(walls);
+    out.cpu = median(cpus);
+    return exit_code::ok;
+}
+
+std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, bool quick,
+                           std::vector<std::string>& notes) {
+    std::vector<Setting> settings;
+    auto add = [&](const std::string& knob, const std::string& value, auto&& change) {
+        Setting s{knob, value, base};
+        change(s.overrides);
+        settings.push_back(std::move(s));
+    };
+    const std::vector<int> supersamples = quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 4, 16, 64};
+    for (const int n : supersamples)
+        add("supersamples", std::to_string(n), [&](SceneOverrides& o) { o.supersamples = n; });
+    if (facts.area_lights) {
+        const std::vector<int> sides = quick ? std::vector<int>{1, 2, 4} : std::vector<int>{1, 2, 4, 8, 10};
+        for (const int n : sides)
+            add("light_samples", std::to_string(n * n), [&](SceneOverrides& o) { o.light_samples = n; });
+    } else {
+        notes.push_back("light_samples and adaptive_lights skipped: the scene has no area light");
+    }
+    const int max_depth = quick ? 2 : 8;
+    for (int d = 0; d <= max_depth; ++d)
+        add("max_depth", std::to_string(d), [&](SceneOverrides& o) { o.max_depth = d; });
+    // Adaptive supersampling only matters with several samples per pixel.
+    const int aa_samples = std::max(facts.supersamples, 16);
+    if (aa_samples != facts.supersamples)
+        notes.push_back("adaptive_aa rows use " + std::to_string(aa_samples) + " supersamples");
+    for (const bool on : {false, true})
+        add("adaptive_aa", on ? "on" : "off", [&](SceneOverrides& o) {
+            o.adaptive_supersampling = on;
+            o.supersamples = aa_samples;
+        });
+    if (facts.area_lights)
+        for (const bool on : {false, true})
+            add("adaptive_lights", on ? "on" : "off", [&](SceneOverrides& o) { o.adaptive_lights = on; });
+    return settings;
+}
+
+int prepare_directory(const std::string& dir, std::string& error) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(dir, ec)) return exit_code::ok;
+    // The directory itself is created; a missing parent is not (wsd-cli.md, exit status 3).
+    if (!std::filesystem::create_directory(dir, ec)) {
+        error = "cannot create output directory '" + dir + "': " + (ec ? ec.message() : "it exists and is not a directory");
+        return exit_code::io;
+    }
+    return exit_code::ok;
+}
+
+}  // namespace
+
+int run_bench(const BenchArgs& args) {
+    const int repeat = args.repeat > 0 ? args.repeat : (args.quick ? 1 : 3);
+    std::string text, error;
+    if (!read_input_file(args.scene, text, error)) return fail(exit_code::io, error);
+
+    // The scene's own settings, without building anything.
+    SceneFacts facts;
+    {
+        lang::LoadOptions options;
+        options.build = false;
+        lang::SourceManager sources;
+        std::optional<lang::LoadedScene> loaded;
+        if (const int s = load_scene_text(args.scene, text, options, sources, loaded); s != exit_code::ok) return s;
+        const render::Settings& st = loaded->spec.settings;
+        facts.width = st.width;
+        facts.height = st.height;
+        facts.supersamples = st.supersamples;
+        facts.max_depth = st.max_depth;
+        for (const render::LightSpec& l : loaded->spec.lights)
+            if (l.kind == render::LightKind::Area && !facts.area_lights) {
+                facts.area_lights = true;
+                facts.light_grid = std::to_string(l.samples_u) + "x" + std::to_string(l.samples_v);
+            }
+    }
+    SceneOverrides base;
+    int width = args.width ? args.width : facts.width, height = args.height ? args.height : facts.height;
+    if (args.quick && !args.width && !args.height) {
+        const double scale = std::min(1.0, static_cast<double>(quick_max_side) / std::max(width, height));
+        width = std::max(1, static_cast<int>(std::lround(width * scale)));
+        height = std::max(1, static_cast<int>(std::lround(height * scale)));
+    }
+    base.width = width;
+    base.height = height;
+    if (static_cast<long long>(width) * height > max_image_pixels)
+        return fail(exit_code::usage, "image size exceeds 2^28 pixels");
+
+    if (const int s = prepare_directory(args.dir, error); s != exit_code::ok) return fail(s, error);
+    const std::filesystem::path dir(args.dir);
+    for (const char* name : {"bench.csv", "bench.md", "bench.svg"})
+        if (!output_directory_exists((dir / name).string(), error)) return fail(exit_code::io, error);
+
+    BenchInfo info;
+    info.scene = display_path(args.scene);
+    info.width = width;
+    info.height = height;
+    info.repeat = repeat;
+    info.scene_settings = "supersamples " + std::to_string(facts.supersamples) +
+                          (facts.area_lights ? ", light samples " + facts.light_grid : std::string()) +
+                          ", max depth " + std::to_string(facts.max_depth);
+
+    SceneOverrides reference = base;
+    reference.supersamples = args.reference_supersamples ? args.reference_supersamples : 64;
+    const int ref_light = args.reference_light_samples ? args.reference_light_samples : (args.quick ? 8 : 16);
+    if (facts.area_lights) reference.light_samples = ref_light;
+    reference.max_depth = args.reference_depth >= 0 ? args.reference_depth : std::max(facts.max_depth, 10);
+    reference.adaptive_supersampling = false;
+    reference.adaptive_lights = false;
+    info.reference_settings = "supersamples " + std::to_string(*reference.supersamples) +
+                              (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" +
+                                                       std::to_string(ref_light)
+                                                 : std::string()) +
+                              ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling";
+
+    CancelOnSignal signals;
+    const bool verbose = !args.quiet;
+    if (verbose) std::cerr << "bench: reference (" << info.reference_settings << ") at " << width << "x" << height << "\n";
+    RunResult ref;
+    if (const int s = run_setting(args.scene, text, reference, args, 1, signals, "bench reference", ref); s != exit_code::ok) {
+        if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
+        return s;
+    }
+    info.reference_seconds = ref.wall;
+    const DisplayImage ref_display = to_display(ref.film);
+
+    const std::vector<Setting> settings = sweep(facts, base, args.quick, info.notes);
+    std::vector<BenchRow> rows;
+    for (size_t i = 0; i < settings.size(); ++i) {
+        const Setting& setting = settings[i];
+        RunResult run;
+        const std::string label = "bench [" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) +
+                                  "] " + setting.knob + " " + setting.value;
+        if (const int s = run_setting(args.scene, text, setting.overrides, args, repeat, signals, label, run);
+            s != exit_code::ok) {
+            if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
+            return s;
+        }
+        BenchRow row;
+        row.knob = setting.knob;
+        row.value = setting.value;
+        row.wall_seconds = run.wall;
+        row.cpu_seconds = run.cpu;
+        row.stats = run.stats;
+        row.error = compare(to_display(run.film), ref_display);
+        if (verbose) {
+            std::ostringstream line;
+            line.precision(4);
+            line << "bench: [" << i + 1 << "/" << settings.size() << "] " << row.knob << " " << row.value
+                 << ": " << row.wall_seconds << " s, RMSE " << row.error.rmse << "\n";
+            std::cerr << line.str() << std::flush;
+        }
+        rows.push_back(std::move(row));
+    }
+    mark_pareto(rows);
+
+    std::cout << bench_table(rows) << std::flush;
+    for (const auto& [name, content] : {std::pair<std::string, std::string>{"bench.csv", bench_csv(rows)},
+                                        {"bench.md", bench_markdown(rows, info)},
+                                        {"bench.svg", bench_svg(rows, info)}})
+        if (!write_file_atomic((dir / name).string(), content, error)) return fail(exit_code::io, error);
+    if (verbose) std::cerr << "bench: wrote " << (dir / "bench.csv").string() << ", bench.md, bench.svg\n";
+    return exit_code::ok;
+}
+
+}  // namespace wsd::app

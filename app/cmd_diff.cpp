@@ -1,0 +1,78 @@
+// `wsd diff A B [-o HEATMAP]`: compares two images on display values (sRGB-encoded, clamped) and
+// prints RMSE, PSNR, the largest absolute error and SSIM. A file that cannot be opened is an I/O
+// error (3); one that opens but does not decode, or two sizes that differ, are input errors (1).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/image_metrics.h"
+#include "app/io_util.h"
+#include "render/image_io.h"
+
+namespace wsd::app {
+
+namespace {
+
+bool is_8bit(render::ImageFormat f) {
+    return f == render::ImageFormat::Png || f == render::ImageFormat::Jpeg ||
+           f == render::ImageFormat::Bmp || f == render::ImageFormat::Tga;
+}
+
+int read_display(const std::string& path, DisplayImage& image) {
+    std::string error;
+    if (!can_open_for_reading(path, error)) return fail(exit_code::io, error);
+    render::Film film;
+    if (!render::read_image(path, film, error))
+        return fail(exit_code::input_error, "cannot read image '" + path + "': " + error);
+    image = to_display(film, is_8bit(render::format_from_extension(path)));
+    return exit_code::ok;
+}
+
+std::string number(double v) {
+    if (std::isinf(v)) return "inf";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+}  // namespace
+
+int run_diff(const DiffArgs& args) {
+    std::string error;
+    if (!args.heatmap.empty()) {
+        if (render::format_from_extension(args.heatmap) == render::ImageFormat::Unknown)
+            return fail(exit_code::usage, "cannot write '" + args.heatmap + "': unknown image format");
+        if (!output_directory_exists(args.heatmap, error)) return fail(exit_code::io, error);
+    }
+    DisplayImage a, b;
+    if (const int s = read_display(args.a, a); s != exit_code::ok) return s;
+    if (const int s = read_display(args.b, b); s != exit_code::ok) return s;
+    if (a.width != b.width || a.height != b.height)
+        return fail(exit_code::input_error, "the images have different sizes: '" + args.a + "' is " +
+                                                std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                                ", '" + args.b + "' is " + std::to_string(b.width) +
+                                                "x" + std::to_string(b.height));
+    const ImageMetrics m = compare(a, b);
+    std::cout << "RMSE: " << number(m.rmse) << '\n'
+              << "PSNR: " << number(m.psnr) << (std::isinf(m.psnr) ? "" : " dB") << '\n'
+              << "max abs error: " << number(m.max_abs_error) << '\n'
+              << "SSIM: " << number(m.ssim) << '\n'
+              << std::flush;
+    if (!args.heatmap.empty()) {
+        double scale = 0;
+        const DisplayImage heat = error_heatmap(a, b, scale);
+        render::Film film;
+        film.width = heat.width;
+        film.height = heat.height;
+        film.rgb.resize(heat.rgb.size());
+        for (size_t i = 0; i < heat.rgb.size(); ++i)
+            film.rgb[i] = static_cast<float>(render::srgb_decode(heat.rgb[i]));
+        if (!render::write_image(args.heatmap, film, error)) return fail(exit_code::io, error);
+        std::cerr << "heat map: " << args.heatmap << " (white = error " << number(scale) << ")\n";
+    }
+    return exit_code::ok;
+}
+
+}  // namespace wsd::app

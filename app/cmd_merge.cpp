@@ -1,0 +1,139 @@
+// `wsd merge TILE... -o OUT`: reads tile files, checks that they come from one scene with one set
+// of settings and one seed and that they cover the image exactly once, then assembles them and
+// writes OUT atomically. Any problem names the tile at fault and nothing is written.
+#include <algorithm>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/io_util.h"
+#include "app/tile_file.h"
+#include "render/image_io.h"
+
+namespace wsd::app {
+
+namespace {
+
+struct Tile {
+    std::string path;
+    TileMeta meta;
+    render::Film film;
+};
+
+std::string describe(const render::Region& r) {
+    return "x " + std::to_string(r.x0) + ".." + std::to_string(r.x1 - 1) + ", y " +
+           std::to_string(r.y0) + ".." + std::to_string(r.y1 - 1);
+}
+
+bool intersects(const render::Region& a, const render::Region& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+// Every tile must agree with the first on the scene, the settings, the size and the seed.
+int check_consistency(const std::vector<Tile>& tiles) {
+    const Tile& first = tiles.front();
+    for (const Tile& t : tiles) {
+        if (t.meta.scene_hash != first.meta.scene_hash)
+            return fail(exit_code::input_error, "tile '" + t.path + "' was rendered from a different scene than '" +
+                                                    first.path + "' (scene hash " + t.meta.scene_hash +
+                                                    " vs " + first.meta.scene_hash + ")");
+        if (t.meta.seed != first.meta.seed)
+            return fail(exit_code::input_error, "tile '" + t.path + "' was rendered with seed " +
+                                                    std::to_string(t.meta.seed) + ", but '" + first.path +
+                                                    "' with seed " + std::to_string(first.meta.seed));
+        if (t.meta.full_width != first.meta.full_width || t.meta.full_height != first.meta.full_height)
+            return fail(exit_code::input_error,
+                        "tile '" + t.path + "' belongs to a " + std::to_string(t.meta.full_width) + "x" +
+                            std::to_string(t.meta.full_height) + " image, but '" + first.path + "' to a " +
+                            std::to_string(first.meta.full_width) + "x" + std::to_string(first.meta.full_height) + " one");
+        if (t.meta.settings_hash != first.meta.settings_hash)
+            return fail(exit_code::input_error, "tile '" + t.path + "' was rendered with different settings than '" +
+                                                    first.path + "'");
+    }
+    return exit_code::ok;
+}
+
+// Duplicates and overlaps name both tiles; a gap names the uncovered rectangle and, for
+// --tile I/N tiles, the tile numbers that are missing.
+int check_coverage(const std::vector<Tile>& tiles) {
+    for (size_t i = 0; i < tiles.size(); ++i)
+        for (size_t j = 0; j < i; ++j) {
+            const render::Region &a = tiles[i].meta.region, &b = tiles[j].meta.region;
+            if (a.x0 == b.x0 && a.y0 == b.y0 && a.x1 == b.x1 && a.y1 == b.y1)
+                return fail(exit_code::input_error, "tile '" + tiles[i].path + "' duplicates '" +
+                                                        tiles[j].path + "' (" + describe(a) + ")");
+            if (intersects(a, b))
+                return fail(exit_code::input_error, "tile '" + tiles[i].path + "' (" + describe(a) +
+                                                        ") overlaps '" + tiles[j].path + "' (" + describe(b) + ")");
+        }
+    // With no overlaps, the image is covered iff the areas add up; otherwise find a gap on the
+    // grid of tile edges (each cell of that grid is wholly covered or wholly not).
+    const int w = tiles.front().meta.full_width, h = tiles.front().meta.full_height;
+    long long area = 0;
+    for (const Tile& t : tiles)
+        area += static_cast<long long>(t.meta.region.x1 - t.meta.region.x0) * (t.meta.region.y1 - t.meta.region.y0);
+    if (area == static_cast<long long>(w) * h) return exit_code::ok;
+    std::set<int> xs{0, w}, ys{0, h};
+    for (const Tile& t : tiles) {
+        xs.insert({t.meta.region.x0, t.meta.region.x1});
+        ys.insert({t.meta.region.y0, t.meta.region.y1});
+    }
+    std::string gap;
+    for (auto y = ys.begin(); gap.empty() && std::next(y) != ys.end(); ++y)
+        for (auto x = xs.begin(); gap.empty() && std::next(x) != xs.end(); ++x) {
+            const render::Region cell{*x, *y, *std::next(x), *std::next(y)};
+            const bool covered = std::any_of(tiles.begin(), tiles.end(), [&](const Tile& t) { return intersects(t.meta.region, cell); });
+            if (!covered) gap = describe(cell);
+        }
+    std::string missing;
+    const int count = tiles.front().meta.tile_count;
+    if (count > 0) {
+        std::set<int> present;
+        for (const Tile& t : tiles) present.insert(t.meta.tile_index);
+        for (int i = 1; i <= count; ++i)
+            if (!present.count(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(count);
+    }
+    return fail(exit_code::input_error, "the tiles do not cover the image: pixels " + gap + " are missing" +
+                                            (missing.empty() ? std::string() : " (missing tile " + missing + ")"));
+}
+
+}  // namespace
+
+int run_merge(const MergeArgs& args) {
+    std::string error;
+    if (render::format_from_extension(args.output) == render::ImageFormat::Unknown)
+        return fail(exit_code::usage, "cannot write '" + args.output +
+                                          "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+    if (!output_directory_exists(args.output, error)) return fail(exit_code::io, error);
+
+    std::vector<Tile> tiles;
+    for (const std::string& path : args.tiles) {
+        std::string bytes;
+        if (!read_input_file(path, bytes, error)) return fail(exit_code::io, error);
+        Tile tile;
+        tile.path = path;
+        if (!decode_tile(bytes, tile.film, tile.meta, error))
+            return fail(exit_code::input_error, "tile '" + path + "': " + error);
+        tiles.push_back(std::move(tile));
+    }
+    if (const int s = check_consistency(tiles); s != exit_code::ok) return s;
+    if (const int s = check_coverage(tiles); s != exit_code::ok) return s;
+
+    render::Film image;
+    image.width = tiles.front().meta.full_width;
+    image.height = tiles.front().meta.full_height;
+    image.rgb.assign(static_cast<size_t>(image.width) * image.height * 3, 0.0f);
+    for (const Tile& t : tiles) {
+        const render::Region& r = t.meta.region;
+        const size_t row = static_cast<size_t>(r.x1 - r.x0) * 3;
+        for (int y = r.y0; y < r.y1; ++y)
+            std::copy_n(t.film.rgb.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y - r.y0) * row), row,
+                        image.rgb.begin() + static_cast<std::ptrdiff_t>((static_cast<size_t>(y) * image.width + r.x0) * 3));
+    }
+    if (!render::write_image(args.output, image, error)) return fail(exit_code::io, error);
+    return exit_code::ok;
+}
+
+}  // namespace wsd::app

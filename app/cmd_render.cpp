@@ -1,0 +1,197 @@
+// `wsd render SCENE [options]`: loads the scene with the command-line overrides, renders the
+// whole image or one tile/region with progress and cancellation, and writes the image (or tile
+// file) atomically, then the statistics. Usage errors are found before any rendering starts.
+#include <charconv>
+#include <iostream>
+#include <stdexcept>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+#include "app/io_util.h"
+#include "app/progress.h"
+#include "app/signals.h"
+#include "app/stats_report.h"
+#include "app/tile_file.h"
+#include "render/image_io.h"
+
+namespace wsd::app {
+
+namespace {
+
+// Parses a decimal integer that must fill the whole string.
+bool parse_whole_int(std::string_view text, long long& value) {
+    if (text.empty()) return false;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return ec == std::errc() && end == text.data() + text.size();
+}
+
+struct TileRequest {
+    int index = 0, count = 0;       // --tile I/N
+    std::optional<render::Region> region;  // --region (or the tile's rows once the size is known)
+};
+
+bool parse_tile(const std::string& text, TileRequest& tile, std::string& error) {
+    const size_t slash = text.find('/');
+    long long i = 0, n = 0;
+    if (slash == std::string::npos || !parse_whole_int(std::string_view(text).substr(0, slash), i) ||
+        !parse_whole_int(std::string_view(text).substr(slash + 1), n)) {
+        error = "--tile: expected I/N (e.g. 3/8), got '" + text + "'";
+        return false;
+    }
+    if (n < 1 || n > max_image_side || i < 1 || i > n) {
+        error = "--tile " + text + ": I must be between 1 and N, and N between 1 and " +
+                std::to_string(max_image_side);
+        return false;
+    }
+    tile.index = static_cast<int>(i);
+    tile.count = static_cast<int>(n);
+    return true;
+}
+
+bool parse_region(const std::string& text, TileRequest& tile, std::string& error) {
+    long long v[4];
+    size_t start = 0;
+    for (int k = 0; k < 4; ++k) {
+        const size_t comma = k < 3 ? text.find(',', start) : text.size();
+        if (comma == std::string::npos ||
+            !parse_whole_int(std::string_view(text).substr(start, comma - start), v[k]) || v[k] < 0 ||
+            v[k] > max_image_side) {
+            error = "--region: expected x0,y0,x1,y1 (pixels, half-open), got '" + text + "'";
+            return false;
+        }
+        start = comma + 1;
+    }
+    if (v[0] >= v[2] || v[1] >= v[3]) {
+        error = "--region " + text + ": the rectangle is empty (need x0 < x1 and y0 < y1)";
+        return false;
+    }
+    tile.region = render::Region{static_cast<int>(v[0]), static_cast<int>(v[1]),
+                                 static_cast<int>(v[2]), static_cast<int>(v[3])};
+    return true;
+}
+
+std::string default_output(const RenderArgs& args, const TileRequest& tile) {
+    const std::string stem = scene_stem(args.scene);
+    if (tile.count > 0)
+        return stem + ".tile-" + std::to_string(tile.index) + "-of-" + std::to_string(tile.count) + ".pfm";
+    if (tile.region) {
+        const render::Region& r = *tile.region;
+        return stem + ".region-" + std::to_string(r.x0) + "-" + std::to_string(r.y0) + "-" +
+               std::to_string(r.x1) + "-" + std::to_string(r.y1) + ".pfm";
+    }
+    return stem + ".png";
+}
+
+// Resolves the tile's rows now that the image size is known; false + error for a usage error.
+bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& error) {
+    if (tile.count > 0) {
+        const long long h = s.height;
+        const int y0 = static_cast<int>((tile.index - 1) * h / tile.count);
+        const int y1 = static_cast<int>(tile.index * h / tile.count);
+        if (y0 == y1) {
+            error = "--tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) +
+                    ": the image has only " + std::to_string(s.height) + " rows, so this tile is empty";
+            return false;
+        }
+        tile.region = render::Region{0, y0, s.width, y1};
+    } else if (tile.region) {
+        const render::Region& r = *tile.region;
+        if (r.x1 > s.width || r.y1 > s.height) {
+            error = "--region lies outside the " + std::to_string(s.width) + "x" +
+                    std::to_string(s.height) + " image";
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+    TileRequest tile;
+    std::string error;
+    if (!args.tile.empty() && !args.region.empty())
+        return fail(exit_code::usage, "--tile and --region cannot be used together");
+    if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
+    if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
+    const bool tiled = tile.count > 0 || tile.region.has_value();
+
+    const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
+    const render::ImageFormat format = render::format_from_extension(output);
+    if (format == render::ImageFormat::Unknown)
+        return fail(exit_code::usage, "cannot write '" + output +
+                                          "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+    if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
+    if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
+        return fail(exit_code::io, error);
+
+    lang::LoadOptions load_options;
+    load_options.use_bvh = !args.no_bvh;
+    load_options.threads = args.threads;
+    load_options.adjust = [&](render::SceneSpec& spec) { args.overrides.apply(spec); };
+    lang::SourceManager sources;
+    std::optional<lang::LoadedScene> loaded;
+    if (const int status = load_scene_file(args.scene, load_options, sources, loaded); status != exit_code::ok)
+        return status;
+    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    const render::Settings& settings = loaded->spec.settings;
+    if (static_cast<long long>(settings.width) * settings.height > max_image_pixels)
+        return fail(exit_code::usage, "image size " + std::to_string(settings.width) + "x" +
+                                          std::to_string(settings.height) + " exceeds 2^28 pixels");
+    if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
+
+    CancelOnSignal signals;
+    ProgressReporter progress(progress_mode(args.quiet), "render");
+    render::RenderOptions options;
+    options.threads = args.threads;
+    options.use_bvh = !args.no_bvh;
+    options.region = tile.region;
+    options.adaptive_lights = args.adaptive_lights;
+    options.cancel = signals.flag();
+    options.progress = [&](double fraction, const render::RayStats& so_far) { progress.update(fraction, so_far); };
+    const render::RenderResult result = render::render(*loaded->scene, options);
+    progress.finish(!result.cancelled && !signals.cancelled());
+    if (result.cancelled || signals.cancelled()) {
+        std::cerr << "wsd: interrupted; no image written\n";
+        return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
+    }
+
+    if (tiled && format == render::ImageFormat::Pfm) {
+        TileMeta meta;
+        meta.full_width = settings.width;
+        meta.full_height = settings.height;
+        meta.region = *tile.region;
+        meta.scene_hash = hex64(scene_text_hash(sources));
+        meta.settings_hash = hex64(fnv1a64(settings_fingerprint(loaded->spec, args.adaptive_lights)));
+        meta.seed = settings.seed;
+        meta.tile_index = tile.index;
+        meta.tile_count = tile.count;
+        meta.scene = display_path(args.scene);
+        if (!write_file_atomic(output, encode_tile(result.film, meta), error)) return fail(exit_code::io, error);
+    } else if (!render::write_image(output, result.film, error)) {
+        return fail(exit_code::io, error);
+    }
+
+    if (args.stats || !args.stats_json.empty()) {
+        RenderReport report;
+        report.scene = display_path(args.scene);
+        report.width = settings.width;
+        report.height = settings.height;
+        report.region_width = result.film.width;
+        report.region_height = result.film.height;
+        report.supersamples = settings.supersamples;
+        report.threads = args.threads;
+        report.stats = result.stats;
+        report.parse_seconds = loaded->parse_seconds;
+        report.build_seconds = loaded->build_seconds + result.build_seconds;
+        report.render_seconds = result.render_seconds;
+        report.peak_memory_bytes = peak_memory_bytes();
+        report.effects = result.effects;
+        if (args.stats) std::cout << stats_table(report) << std::flush;
+        if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
+            return fail(exit_code::io, error);
+    }
+    return exit_code::ok;
+}
+
+}  // namespace wsd::app

@@ -1,0 +1,67 @@
+// The arguments and entry points of every `wsd` command. cli.cpp fills the argument structs from
+// the command line (CLI11); each run_* function returns an exit status (exit_codes.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/scene_setup.h"
+
+namespace wsd::app {
+
+// Parses argv and runs the chosen command; every error becomes an exit status (never exits).
+int run_cli(int argc, char** argv);
+
+struct CheckArgs {
+    std::vector<std::string> files;
+    bool effects = false;
+};
+int run_check(const CheckArgs& args);
+
+struct AstArgs {
+    std::string file;
+};
+int run_ast(const AstArgs& args);
+
+struct RenderArgs {
+    std::string scene;
+    std::string output;  // empty: ./NAME.png (./NAME.tile-I-of-N.pfm for tiles)
+    SceneOverrides overrides;
+    int threads = 0;
+    bool no_bvh = false;
+    bool stats = false;
+    std::string stats_json;
+    bool quiet = false;
+    bool adaptive_lights = false;
+    std::string tile;    // "I/N"
+    std::string region;  // "x0,y0,x1,y1"
+};
+int run_render(const RenderArgs& args);
+
+struct DiffArgs {
+    std::string a, b;
+    std::string heatmap;
+};
+int run_diff(const DiffArgs& args);
+
+struct MergeArgs {
+    std::vector<std::string> tiles;
+    std::string output;
+};
+int run_merge(const MergeArgs& args);
+
+struct BenchArgs {
+    std::string scene;
+    std::string dir = ".";
+    int repeat = 0;                      // 0: 3, or 1 with --quick
+    bool quick = false;
+    int reference_supersamples = 0;      // 0: 64
+    int reference_light_samples = 0;     // N: an N×N grid on every area light; 0: 16 (8 quick)
+    int reference_depth = -1;            // -1: max(scene's max_depth, 10)
+    int threads = 0;
+    int width = 0, height = 0;           // 0: the scene's (or the quick size)
+    bool quiet = false;
+};
+int run_bench(const BenchArgs& args);
+
+}  // namespace wsd::app

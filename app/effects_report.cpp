@@ -1,0 +1,55 @@
+// `wsd check --effects`: the renderer's own effect analysis (render::analyse_effects) printed as
+// one line per effect, with the objects that call for it named by their position in the scene
+// (the n-th object statement evaluated) and kind.
+#include "app/effects_report.h"
+
+#include "render/effects.h"
+
+namespace wsd::app {
+
+namespace {
+
+constexpr size_t max_listed = 12;  // a 1000-sphere scene should not print 1000 names per effect
+
+const char* kind_name(render::ShapeKind kind) {
+    switch (kind) {
+        case render::ShapeKind::Sphere: return "sphere";
+        case render::ShapeKind::Box: return "box";
+        case render::ShapeKind::Triangle: return "triangle";
+        case render::ShapeKind::Plane: return "plane";
+        case render::ShapeKind::Mesh: return "mesh";
+    }
+    return "object";
+}
+
+}  // namespace
+
+void print_effects(const lang::LoadedScene& scene, std::ostream& out) {
+    const render::SceneSpec& spec = scene.spec;
+    const render::EffectSet effects = render::analyse_effects(spec);
+    if (effects.mask == 0) {
+        out << "  effects: none (local shading only)\n";
+        return;
+    }
+    out << "  effects:\n";
+    for (size_t i = 0; i < render::kEffectCount; ++i) {
+        const auto effect = static_cast<render::Effect>(i);
+        if (!effects.has(effect)) continue;
+        out << "    " << render::effect_name(effect);
+        const std::vector<uint32_t>& shapes = effects.shapes[i];
+        if (shapes.empty()) {
+            out << " (scene-wide)\n";
+            continue;
+        }
+        out << ": ";
+        for (size_t k = 0; k < shapes.size() && k < max_listed; ++k) {
+            const uint32_t index = shapes[k];
+            const char* kind = index < spec.shapes.size() ? kind_name(spec.shapes[index].kind) : "object";
+            out << (k ? ", " : "") << kind << " #" << index + 1;
+        }
+        if (shapes.size() > max_listed) out << " and " << shapes.size() - max_listed << " more";
+        out << '\n';
+    }
+}
+
+}  // namespace wsd::app

@@ -1,0 +1,156 @@
+// File helpers for the commands: command-line inputs (with "-" for stdin), atomic outputs, the
+// FNV-1a hash used by tile metadata, and the process's peak memory for the statistics.
+#include "app/io_util.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace wsd::app {
+
+namespace fs = std::filesystem;
+
+bool read_input_file(const std::string& path, std::string& text, std::string& error) {
+    if (path == "-") {
+        std::ostringstream buffer;
+        buffer << std::cin.rdbuf();
+        if (std::cin.bad()) {
+            error = "cannot read standard input";
+            return false;
+        }
+        text = buffer.str();
+        return true;
+    }
+    if (!can_open_for_reading(path, error)) return false;
+    std::ifstream in(path, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) {
+        error = "cannot read '" + path + "': read error";
+        return false;
+    }
+    return true;
+}
+
+bool can_open_for_reading(const std::string& path, std::string& error) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        error = "cannot read '" + path + "': it is a directory";
+        return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = "cannot read '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    return true;
+}
+
+bool output_directory_exists(const std::string& path, std::string& error) {
+    fs::path dir = fs::path(path).parent_path();
+    if (dir.empty()) dir = ".";
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) {
+        error = "cannot write '" + path + "': directory '" + dir.string() + "' does not exist";
+        return false;
+    }
+    if (::access(dir.c_str(), W_OK) != 0) {
+        error = "cannot write '" + path + "': directory '" + dir.string() + "' is not writable";
+        return false;
+    }
+    return true;
+}
+
+bool write_file_atomic(const std::string& path, std::string_view data, std::string& error) {
+    if (!output_directory_exists(path, error)) return false;
+    const fs::path target(path);
+    fs::path dir = target.parent_path();
+    static int counter = 0;
+    // Built with append: GCC 12 warns falsely (-Wrestrict) about `"." + std::string`.
+    std::string temp_name = ".";
+    temp_name.append(target.filename().string())
+        .append(".tmp-")
+        .append(std::to_string(::getpid()))
+        .append("-")
+        .append(std::to_string(counter++));
+    const fs::path temp = dir.empty() ? fs::path(temp_name) : dir / temp_name;
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        error = "cannot write '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    size_t written = 0;
+    while (written < data.size()) {
+        const ssize_t n = ::write(fd, data.data() + written, data.size() - written);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            error = "cannot write '" + path + "': " + std::strerror(errno);
+            ::close(fd);
+            ::unlink(temp.c_str());
+            return false;
+        }
+        written += static_cast<size_t>(n);
+    }
+    if (::close(fd) != 0) {
+        error = "cannot write '" + path + "': " + std::strerror(errno);
+        ::unlink(temp.c_str());
+        return false;
+    }
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+        error = "cannot write '" + path + "': " + std::strerror(errno);
+        ::unlink(temp.c_str());
+        return false;
+    }
+    return true;
+}
+
+int fail(int status, const std::string& message) {
+    std::cerr << "wsd: error: " << message << '\n';
+    return status;
+}
+
+void warn(const std::string& message) { std::cerr << "wsd: warning: " << message << '\n'; }
+
+uint64_t fnv1a64(std::string_view data, uint64_t seed) {
+    uint64_t h = seed;
+    for (const char c : data) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+std::string hex64(uint64_t value) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(value));
+    return buf;
+}
+
+std::string scene_stem(const std::string& path) {
+    if (path == "-") return "stdin";
+    std::string stem = fs::path(path).stem().string();
+    return stem.empty() ? "scene" : stem;
+}
+
+uint64_t peak_memory_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) {
+            std::istringstream fields(line.substr(6));
+            uint64_t kib = 0;
+            fields >> kib;
+            return kib * 1024;
+        }
+    }
+    return 0;
+}
+
+}  // namespace wsd::app

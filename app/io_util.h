@@ -1,0 +1,39 @@
+// Small file helpers shared by the commands: reading a command-line input (or stdin for "-"),
+// writing an output atomically (temporary file in the same directory, then rename), checking
+// early that an output can be written, and printing `wsd: error: ...` lines.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace wsd::app {
+
+// Reads the whole file ("-" = stdin). False + a message naming the path on failure.
+bool read_input_file(const std::string& path, std::string& text, std::string& error);
+
+// True when `path` names an existing regular file we can open for reading.
+bool can_open_for_reading(const std::string& path, std::string& error);
+
+// False + message when the directory that would hold `path` does not exist (it is never created).
+bool output_directory_exists(const std::string& path, std::string& error);
+
+// Writes `data` to a temporary file next to `path`, then renames it over `path`. On failure
+// nothing is left behind.
+bool write_file_atomic(const std::string& path, std::string_view data, std::string& error);
+
+// `wsd: error: message` on stderr; returns `status` so callers can `return fail(...)`.
+int fail(int status, const std::string& message);
+void warn(const std::string& message);
+
+// FNV-1a, 64 bits: the scene/settings hash of tiles. `seed` chains several pieces.
+uint64_t fnv1a64(std::string_view data, uint64_t seed = 0xcbf29ce484222325ull);
+std::string hex64(uint64_t value);
+
+// The stem of a scene path for default outputs ("a/b/NAME.wsd" → "NAME"; "-" → "stdin").
+std::string scene_stem(const std::string& path);
+
+// Process memory high-water mark (VmHWM) in bytes, 0 if unknown.
+uint64_t peak_memory_bytes();
+
+}  // namespace wsd::app

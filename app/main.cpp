@@ -1,0 +1,21 @@
+// The `wsd` executable: runs the command line and turns anything thrown into exit status 4 with
+// a request for a bug report (wsd-cli.md, "Exit status").
+#include <exception>
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/exit_codes.h"
+
+int main(int argc, char** argv) {
+    try {
+        return wsd::app::run_cli(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "wsd: internal error: " << e.what()
+                  << "\nThis is a bug in wsd; please report it with the command line and the "
+                     "scene that caused it.\n";
+    } catch (...) {
+        std::cerr << "wsd: internal error: unknown exception\nThis is a bug in wsd; please "
+                     "report it with the command line and the scene that caused it.\n";
+    }
+    return wsd::app::exit_code::internal;
+}

@@ -1,0 +1,75 @@
+// Loading scenes for the commands: file or stdin, overrides, diagnostics to stderr, and the
+// fingerprints that tile files carry so that `wsd merge` can refuse mismatched tiles.
+#include "app/scene_setup.h"
+
+#include <iostream>
+#include <sstream>
+
+#include "app/exit_codes.h"
+#include "app/io_util.h"
+
+namespace wsd::app {
+
+void SceneOverrides::apply(render::SceneSpec& spec) const {
+    render::Settings& s = spec.settings;
+    if (width) s.width = *width;
+    if (height) s.height = *height;
+    if (supersamples) s.supersamples = *supersamples;
+    if (max_depth) s.max_depth = *max_depth;
+    if (seed) s.seed = *seed;
+    if (adaptive_supersampling) s.adaptive_supersampling = *adaptive_supersampling;
+    for (render::LightSpec& light : spec.lights) {
+        if (light.kind != render::LightKind::Area) continue;
+        if (light_samples) light.samples_u = light.samples_v = *light_samples;
+        if (adaptive_lights) light.adaptive = *adaptive_lights;
+    }
+}
+
+std::string display_path(const std::string& path) { return path == "-" ? "<stdin>" : path; }
+
+int load_scene_text(const std::string& path, const std::string& text,
+                    const lang::LoadOptions& options, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& scene) {
+    lang::Diagnostics diags;
+    scene = lang::load_scene(display_path(path), text, sources, diags, options);
+    if (!diags.all().empty()) std::cerr << lang::format_diagnostics(diags, sources);
+    if (diags.has_errors()) {
+        scene.reset();
+        return exit_code::input_error;
+    }
+    if (!scene) return fail(exit_code::input_error, display_path(path) + ": the scene could not be loaded");
+    return exit_code::ok;
+}
+
+int load_scene_file(const std::string& path, const lang::LoadOptions& options,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene) {
+    std::string text, error;
+    if (!read_input_file(path, text, error)) return fail(exit_code::io, error);
+    return load_scene_text(path, text, options, sources, scene);
+}
+
+uint64_t scene_text_hash(const lang::SourceManager& sources) {
+    uint64_t h = fnv1a64("wsd-scene");
+    for (size_t i = 0; i < sources.size(); ++i) {
+        const std::string& text = sources.file(static_cast<uint32_t>(i)).text;
+        h = fnv1a64(std::to_string(text.size()) + ":", h);
+        h = fnv1a64(text, h);
+    }
+    return h;
+}
+
+std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights) {
+    const render::Settings& s = spec.settings;
+    std::ostringstream out;
+    out.precision(17);
+    out << "size=" << s.width << "x" << s.height << ";supersamples=" << s.supersamples
+        << ";adaptive=" << s.adaptive_supersampling << ";aa_threshold=" << s.aa_threshold
+        << ";bailout=" << s.bailout << ";max_depth=" << s.max_depth << ";ambient=" << s.ambient
+        << ";background=" << s.background.r << "," << s.background.g << "," << s.background.b
+        << ";adaptive_lights=" << adaptive_lights << ";lights=";
+    for (const render::LightSpec& light : spec.lights)
+        out << light.samples_u << "x" << light.samples_v << (light.adaptive ? "a" : "") << ",";
+    return out.str();
+}
+
+}  // namespace wsd::app

@@ -1,0 +1,51 @@
+// What `wsd check`, `wsd render` and `wsd bench` share: reading a scene named on the command line,
+// running lang::load_scene with the command-line overrides, and printing its diagnostics.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "lang/load.h"
+#include "render/scene_spec.h"
+
+namespace wsd::app {
+
+// Command-line replacements for scene settings (wsd-cli.md, `wsd render`).
+struct SceneOverrides {
+    std::optional<int> width, height, supersamples, max_depth;
+    std::optional<int> light_samples;  // every area light becomes an N×N grid
+    std::optional<uint32_t> seed;
+    std::optional<bool> adaptive_supersampling;
+    std::optional<bool> adaptive_lights;  // every area light's own `adaptive` flag
+
+    void apply(render::SceneSpec& spec) const;
+};
+
+// Limits of the values the overrides accept (wsd-language.md §4); usage errors beyond them.
+constexpr int max_image_side = 100000;
+constexpr long long max_image_pixels = 1ll << 28;
+constexpr int max_supersamples = 4096;
+constexpr int max_depth_limit = 256;
+constexpr int max_light_grid_side = 256;  // N×N ≤ 65,536
+
+// The name used in messages for a scene read from stdin ("-").
+std::string display_path(const std::string& path);
+
+// Reads `path` ("-" = stdin) and loads it. Diagnostics go to stderr. Returns an exit status:
+// 0 with `scene` set, 1 for scene errors, 3 when the file cannot be read.
+int load_scene_file(const std::string& path, const lang::LoadOptions& options,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene);
+
+// Same, from text already read (bench loads one text many times).
+int load_scene_text(const std::string& path, const std::string& text,
+                    const lang::LoadOptions& options, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& scene);
+
+// FNV-1a 64 of every source file the load read (the scene and its includes), in order.
+uint64_t scene_text_hash(const lang::SourceManager& sources);
+
+// A canonical text of every setting that changes pixels, except the seed.
+std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights);
+
+}  // namespace wsd::app

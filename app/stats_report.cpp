@@ -1,0 +1,163 @@
+// Formatting of render statistics. Percentages guard against zero tests; JSON numbers are
+// printed with enough digits to round-trip, strings are escaped.
+#include "app/stats_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace wsd::app {
+
+namespace {
+
+std::string fixed(double value, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, value);
+    return buf;
+}
+
+std::string percent(uint64_t part, uint64_t whole) {
+    if (whole == 0) return "-";
+    return fixed(100.0 * static_cast<double>(part) / static_cast<double>(whole), 2) + "%";
+}
+
+std::string json_escape(const std::string& s) {
+    std::string out;
+    for (const char c : s) {
+        const auto u = static_cast<unsigned char>(c);
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (u < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", u);
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+std::string json_number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+double mrays_per_second(const RenderReport& r) {
+    return r.render_seconds > 0 ? static_cast<double>(r.stats.ray_queries()) / r.render_seconds / 1e6
+                                : 0.0;
+}
+
+void row(std::ostringstream& out, const char* name, uint64_t tests, uint64_t hits, bool has_hits) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%-24s %16llu %16s %12s\n", name,
+                  static_cast<unsigned long long>(tests),
+                  has_hits ? std::to_string(hits).c_str() : "-",
+                  has_hits ? percent(hits, tests).c_str() : "-");
+    out << buf;
+}
+
+void line(std::ostringstream& out, const char* name, const std::string& value) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%-28s %s\n", name, value.c_str());
+    out << buf;
+}
+
+}  // namespace
+
+std::string stats_table(const RenderReport& r) {
+    const std::string rule(72, '-');
+    const render::RayStats& s = r.stats;
+    std::ostringstream out;
+    out << rule << '\n' << "Render statistics: " << r.scene << '\n'
+        << "Image resolution " << r.width << " x " << r.height;
+    if (r.region_width != r.width || r.region_height != r.height)
+        out << " (rendered " << r.region_width << " x " << r.region_height << ")";
+    out << '\n' << rule << '\n';
+    const uint64_t pixels = static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height);
+    line(out, "Pixels:", std::to_string(pixels));
+    line(out, "Camera rays:", std::to_string(s.camera_rays) + "  (" +
+                                  (pixels ? fixed(static_cast<double>(s.camera_rays) / static_cast<double>(pixels), 2)
+                                          : std::string("-")) +
+                                  " per pixel)");
+    line(out, "Shadow rays:", std::to_string(s.shadow_rays));
+    line(out, "Reflected rays:", std::to_string(s.reflection_rays));
+    line(out, "Refracted rays:", std::to_string(s.refraction_rays));
+    line(out, "Ray queries (total):", std::to_string(s.ray_queries()));
+    out << rule << '\n';
+    char head[160];
+    std::snprintf(head, sizeof head, "%-24s %16s %16s %12s\n", "Ray->Shape Intersection", "Tests",
+                  "Succeeded", "Percentage");
+    out << head << rule << '\n';
+    row(out, "Sphere", s.sphere_tests, s.sphere_hits, true);
+    row(out, "Triangle", s.triangle_tests, s.triangle_hits, true);
+    row(out, "Box", s.shape_box_tests, 0, false);
+    row(out, "Plane", s.plane_tests, 0, false);
+    row(out, "Bounding box (BVH)", s.box_tests, 0, false);
+    out << rule << '\n';
+    line(out, "Fresnel evaluations:", std::to_string(s.fresnel_evals));
+    line(out, "Texture lookups:", std::to_string(s.texture_evals));
+    line(out, "Noise evaluations:", std::to_string(s.noise_evals));
+    line(out, "Adaptive full-grid pixels:", std::to_string(s.adaptive_pixels));
+    line(out, "Rejected rays (NaN/Inf):", std::to_string(s.rejected_rays));
+    line(out, "Non-finite samples:", std::to_string(s.nonfinite_samples));
+    std::string effects;
+    for (const std::string& e : r.effects) effects += (effects.empty() ? "" : ", ") + e;
+    line(out, "Effects:", effects.empty() ? "-" : effects);
+    out << rule << '\n';
+    line(out, "Parse time:", fixed(r.parse_seconds, 3) + " s");
+    line(out, "Build time:", fixed(r.build_seconds, 3) + " s");
+    line(out, "Render time:", fixed(r.render_seconds, 3) + " s  (" +
+                                  (r.threads > 0 ? std::to_string(r.threads) : std::string("all")) +
+                                  " threads)");
+    line(out, "Speed:", fixed(mrays_per_second(r), 3) + " Mrays/s");
+    line(out, "Peak memory:", fixed(static_cast<double>(r.peak_memory_bytes) / (1024.0 * 1024.0), 1) + " MiB");
+    out << rule << '\n';
+    return out.str();
+}
+
+std::string stats_json(const RenderReport& r) {
+    const render::RayStats& s = r.stats;
+    std::ostringstream out;
+    auto u = [&](const char* key, uint64_t v) { out << "  \"" << key << "\": " << v << ",\n"; };
+    auto d = [&](const char* key, double v) { out << "  \"" << key << "\": " << json_number(v) << ",\n"; };
+    out << "{\n";
+    out << "  \"scene\": \"" << json_escape(r.scene) << "\",\n";
+    u("width", static_cast<uint64_t>(r.width));
+    u("height", static_cast<uint64_t>(r.height));
+    u("rendered_pixels", static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height));
+    u("supersamples", static_cast<uint64_t>(r.supersamples));
+    u("camera_rays", s.camera_rays);
+    u("shadow_rays", s.shadow_rays);
+    u("reflection_rays", s.reflection_rays);
+    u("refraction_rays", s.refraction_rays);
+    u("ray_queries", s.ray_queries());
+    u("triangle_tests", s.triangle_tests);
+    u("triangle_hits", s.triangle_hits);
+    u("sphere_tests", s.sphere_tests);
+    u("sphere_hits", s.sphere_hits);
+    u("box_tests", s.box_tests);
+    u("shape_box_tests", s.shape_box_tests);
+    u("plane_tests", s.plane_tests);
+    u("fresnel_evals", s.fresnel_evals);
+    u("texture_evals", s.texture_evals);
+    u("noise_evals", s.noise_evals);
+    u("rejected_rays", s.rejected_rays);
+    u("adaptive_pixels", s.adaptive_pixels);
+    u("nonfinite_samples", s.nonfinite_samples);
+    d("parse_seconds", r.parse_seconds);
+    d("build_seconds", r.build_seconds);
+    d("render_seconds", r.render_seconds);
+    d("mrays_per_second", mrays_per_second(r));
+    u("peak_memory_bytes", r.peak_memory_bytes);
+    out << "  \"effects\": [";
+    for (size_t i = 0; i < r.effects.size(); ++i)
+        out << (i ? ", " : "") << "\"" << json_escape(r.effects[i]) << "\"";
+    out << "]\n}\n";
+    return out.str();
+}
+
+}  // namespace wsd::app

@@ -1,0 +1,28 @@
+// The statistics of one render: a POV-Ray-like table for `--stats` (stdout) and the JSON of
+// `--stats-json FILE` (wsd-cli.md; the keys the issues name, plus every other counter).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/stats.h"
+
+namespace wsd::app {
+
+struct RenderReport {
+    std::string scene;
+    int width = 0, height = 0;            // the full image
+    int region_width = 0, region_height = 0;  // the pixels rendered (a tile's size)
+    int supersamples = 1;
+    int threads = 0;
+    render::RayStats stats;
+    double parse_seconds = 0, build_seconds = 0, render_seconds = 0;
+    uint64_t peak_memory_bytes = 0;
+    std::vector<std::string> effects;
+};
+
+std::string stats_table(const RenderReport& report);
+std::string stats_json(const RenderReport& report);
+
+}  // namespace wsd::app
