@@ -48,8 +48,8 @@ Film earth() {
             double lat = std::abs(n.y);
             Color c = land > 0.05 ? mix(Color(0.05, 0.25, 0.04), Color(0.35, 0.28, 0.12), (land - 0.05) * 4)
                                   : mix(Color(0.01, 0.04, 0.25), Color(0.02, 0.10, 0.40), land + 0.5);
-            if (lat > 0.85 + 0.05 * fbm(n * 6, 3)) c = Color(0.9, 0.92, 0.95);
-            double cloud = fbm(n * 4 + Vec3(9, 1, 4), 5);
+            if (lat > 0.85 + 0.05 * fbm(n * 6.0, 3)) c = Color(0.9, 0.92, 0.95);
+            double cloud = fbm(n * 4.0 + Vec3(9, 1, 4), 5);
             set(f, x, y, mix(c, Color(1, 1, 1), (cloud - 0.15) * 2.5));
         }
     return f;
@@ -62,7 +62,7 @@ Film moon() {
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
             Vec3 n = sphere_dir((x + 0.5) / f.width, (y + 0.5) / f.height);
-            double g = 0.45 + 0.25 * fbm(n * 3, 6);
+            double g = 0.45 + 0.25 * fbm(n * 3.0, 6);
             for (const Vec3& c : craters) {
                 double d = glm::length(n - glm::normalize(c));
                 if (d < 0.25) g *= 0.75 + 0.25 * (d / 0.25);

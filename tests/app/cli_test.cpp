@@ -1,0 +1,146 @@
+// The `wsd` command through the real binary: exit statuses for every case of wsd-cli.md, the
+// `check` ok line, `ast`, help and version, and that a failed command writes nothing.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <regex>
+#include <sstream>
+
+#include "app_test_util.h"
+
+using namespace wsd::test;
+
+TEST_CASE("wsd --version, --help and COMMAND --help succeed", "[cli]") {
+    TempDir dir;
+    RunResult r = run_wsd(dir, "--version");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("wsd ") != std::string::npos);
+    r = run_wsd(dir, "--help");
+    CHECK(r.status == 0);
+    for (const char* command : {"check", "ast", "render", "diff", "bench", "merge"})
+        CHECK(r.out.find(command) != std::string::npos);
+    r = run_wsd(dir, "render --help");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("--supersamples") != std::string::npos);
+    CHECK(r.out.find("--tile") != std::string::npos);
+}
+
+TEST_CASE("usage errors exit with 2", "[cli]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    CHECK(run_wsd(dir, "").status == 2);                                   // no command
+    CHECK(run_wsd(dir, "frobnicate").status == 2);                         // unknown command
+    CHECK(run_wsd(dir, "render s.wsd --bogus").status == 2);               // unknown option
+    CHECK(run_wsd(dir, "render").status == 2);                             // missing argument
+    CHECK(run_wsd(dir, "render s.wsd --width").status == 2);               // missing value
+    CHECK(run_wsd(dir, "render s.wsd --width 0").status == 2);             // bad value
+    CHECK(run_wsd(dir, "render s.wsd --width abc").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --supersamples 0").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --seed -1").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --tile 5/4").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --tile 0/4").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --tile 1-4").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --region 4,4,2,8").status == 2);
+    CHECK(run_wsd(dir, "render s.wsd --region 0,0,17,16 -o r.pfm").status == 2);  // outside 16×16
+    const RunResult ext = run_wsd(dir, "render s.wsd -o out.xyz");
+    CHECK(ext.status == 2);
+    CHECK(ext.err.find("out.xyz") != std::string::npos);
+    CHECK(run_wsd(dir, "merge a.pfm").status == 2);                        // -o is required
+    CHECK(run_wsd(dir, "diff a.png").status == 2);
+    // Nothing was written by any of them.
+    const auto files = list_files(dir);
+    CHECK(files == std::vector<std::string>{"s.wsd"});
+}
+
+TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    write_file(dir / "frag.wsdi", "let red = material { color <1, 0, 0> }\nsphere { center <0,0,0> radius 1 material red }\n");
+    const RunResult r = run_wsd(dir, "check s.wsd frag.wsdi");
+    CHECK(r.status == 0);
+    CHECK(r.err.empty());
+    const std::regex line("s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 lights, 2 materials\n"
+                          "frag\\.wsdi: ok \xE2\x80\x94 1 objects, 0 triangles, 0 lights, 1 materials\n");
+    CHECK(std::regex_match(r.out, line));
+}
+
+TEST_CASE("check: scene errors exit 1 with diagnostics, unreadable files 3, worst status wins", "[cli][check]") {
+    TempDir dir;
+    write_file(dir / "good.wsd", tiny_scene());
+    write_file(dir / "bad.wsd", "camera { position <0,0,-1> look_at <0,0,0> }\nsphere { center <0,0,0> radus 1 }\n");
+    RunResult r = run_wsd(dir, "check bad.wsd");
+    CHECK(r.status == 1);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("bad.wsd:2:") != std::string::npos);
+    CHECK(r.err.find("radus") != std::string::npos);
+
+    r = run_wsd(dir, "check good.wsd bad.wsd");
+    CHECK(r.status == 1);
+    CHECK(r.out.find("good.wsd: ok") != std::string::npos);
+
+    r = run_wsd(dir, "check missing.wsd");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("missing.wsd") != std::string::npos);
+
+    r = run_wsd(dir, "check bad.wsd missing.wsd good.wsd");
+    CHECK(r.status == 3);
+    CHECK(r.out.find("good.wsd: ok") != std::string::npos);
+
+    // A scene that includes a missing file is a scene error (1), not an I/O error.
+    write_file(dir / "inc.wsd", "include \"nowhere.wsdi\"\n" + tiny_scene());
+    CHECK(run_wsd(dir, "check inc.wsd").status == 1);
+}
+
+TEST_CASE("check reads a scene from stdin with -", "[cli][check]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    const std::string out = dir / "o.txt";
+    const int raw = std::system(("cd " + shell_quote(dir.path().string()) + " && cat s.wsd | " +
+                                 shell_quote(WSD_BINARY) + " check - > o.txt 2>&1").c_str());
+    CHECK(WEXITSTATUS(raw) == 0);
+    CHECK(read_file(out).find(": ok \xE2\x80\x94 2 objects") != std::string::npos);
+}
+
+TEST_CASE("ast prints one node per line with positions", "[cli][ast]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "ast s.wsd");
+    CHECK(r.status == 0);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') > 5);
+    CHECK(r.out.find("@1:1") != std::string::npos);
+    const RunResult again = run_wsd(dir, "ast s.wsd");
+    CHECK(again.out == r.out);
+    write_file(dir / "broken.wsd", "sphere { center <0,0,0> radius }\n}\n");
+    r = run_wsd(dir, "ast broken.wsd");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("broken.wsd:") != std::string::npos);
+    CHECK(run_wsd(dir, "ast nothing.wsd").status == 3);
+}
+
+TEST_CASE("an internal error exits 4 and asks for a bug report", "[cli]") {
+    TempDir dir;
+    const RunResult r = run_wsd(dir, "--version", "WSD_TEST_INTERNAL_ERROR=1");
+    CHECK(r.status == 4);
+    CHECK(r.err.find("bug") != std::string::npos);
+}
+
+TEST_CASE("check --effects names the effects and the objects that call for each", "[cli][check]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    const RunResult r = run_wsd(dir, "check --effects s.wsd");
+    CHECK(r.status == 0);
+    std::istringstream lines(r.out);
+    std::string line;
+    bool reflection = false, texture = false, soft = false;
+    while (std::getline(lines, line)) {
+        if (line.find("reflection") != std::string::npos) reflection = line.find("sphere #2") != std::string::npos;
+        if (line.find("textures") != std::string::npos) texture = line.find("plane #1") != std::string::npos;
+        if (line.find("area") != std::string::npos) soft = true;
+    }
+    CHECK(reflection);
+    CHECK(texture);
+    CHECK(soft);
+    // Without the flag, only the ok line.
+    const std::string plain = run_wsd(dir, "check s.wsd").out;
+    CHECK(std::count(plain.begin(), plain.end(), '\n') == 1);
+}

@@ -1,0 +1,194 @@
+// `wsd render` and `wsd merge` through the real binary: outputs and overrides, statistics,
+// atomic output (nothing partial after any failure), interruption, and tiles that merge into
+// exactly the single render, with every merge error naming the tile at fault.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <sstream>
+
+#include "app_test_util.h"
+
+using namespace wsd::test;
+
+namespace {
+
+// "PF\nW H\n" → W, H.
+std::pair<int, int> pfm_size(const std::string& bytes) {
+    std::istringstream in(bytes);
+    std::string magic;
+    int w = 0, h = 0;
+    in >> magic >> w >> h;
+    return {w, h};
+}
+
+bool no_temporaries(const TempDir& dir) {
+    const auto files = list_files(dir);
+    return std::none_of(files.begin(), files.end(), [](const std::string& f) { return f.find(".tmp") != std::string::npos; });
+}
+
+}  // namespace
+
+TEST_CASE("render writes ./NAME.png by default and honours -o and the overrides", "[render]") {
+    TempDir dir;
+    fs::create_directory(dir.path() / "scenes");
+    write_file(dir / "scenes/s.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "render scenes/s.wsd --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+    CHECK(r.err.empty());
+    CHECK(read_file(dir / "s.png").rfind("\x89PNG", 0) == 0);
+
+    r = run_wsd(dir, "render scenes/s.wsd -o small.pfm --width 8 --height 6 --supersamples 1 --max-depth 0 "
+                     "--light-samples 1 --seed 9 --threads 1 --no-bvh --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(pfm_size(read_file(dir / "small.pfm")) == std::make_pair(8, 6));
+    for (const char* ext : {"hdr", "bmp", "tga", "jpg"}) {
+        CHECK(run_wsd(dir, std::string("render scenes/s.wsd --quiet -o out.") + ext).status == 0);
+        CHECK(fs::file_size(dir / (std::string("out.") + ext)) > 0);
+    }
+    CHECK(no_temporaries(dir));
+}
+
+TEST_CASE("render reads the scene from stdin", "[render]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    const int raw = std::system(("cd " + shell_quote(dir.path().string()) + " && cat s.wsd | " +
+                                 shell_quote(WSD_BINARY) + " render - -o in.pfm --quiet 2>err.txt").c_str());
+    CHECK(WEXITSTATUS(raw) == 0);
+    CHECK(pfm_size(read_file(dir / "in.pfm")) == std::make_pair(16, 16));
+}
+
+TEST_CASE("progress goes to stderr unless --quiet; --stats prints a table", "[render]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "render s.wsd -o a.png --stats --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.empty());
+    for (const char* row : {"Camera rays", "Shadow rays", "Sphere", "Triangle", "Render time", "Peak memory"})
+        CHECK(r.out.find(row) != std::string::npos);
+    r = run_wsd(dir, "render s.wsd -o a.png");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+}
+
+TEST_CASE("--stats-json writes the named keys", "[render]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    const RunResult r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json stats.json");
+    REQUIRE(r.status == 0);
+    const std::string json = read_file(dir / "stats.json");
+    for (const char* key : {"camera_rays", "shadow_rays", "reflection_rays", "refraction_rays", "triangle_tests",
+                            "triangle_hits", "sphere_tests", "sphere_hits", "box_tests", "parse_seconds",
+                            "build_seconds", "render_seconds", "mrays_per_second", "peak_memory_bytes",
+                            "nonfinite_samples", "effects"})
+        CHECK(json.find(std::string("\"") + key + "\":") != std::string::npos);
+    CHECK(json.find("\"camera_rays\": 1024,") != std::string::npos);  // 16×16 pixels × 4 supersamples
+    CHECK(json.find("\"nonfinite_samples\": 0,") != std::string::npos);
+    CHECK(json.find("\"peak_memory_bytes\": 0,") == std::string::npos);
+}
+
+TEST_CASE("a failed render leaves no output and no temporary file", "[render][atomic]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    write_file(dir / "bad.wsd", tiny_scene() + "sphere { center <0,0,0> }\n");
+    RunResult r = run_wsd(dir, "render bad.wsd -o out.png --quiet");
+    CHECK(r.status == 1);
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+    CHECK_FALSE(fs::exists(dir / "bad.png"));
+
+    r = run_wsd(dir, "render missing.wsd -o out.png --quiet");
+    CHECK(r.status == 3);
+
+    r = run_wsd(dir, "render s.wsd -o no/such/dir/out.png --quiet");
+    CHECK(r.status == 3);
+    CHECK_FALSE(fs::exists(dir / "no"));
+    r = run_wsd(dir, "render s.wsd -o out.png --stats-json no/such/stats.json --quiet");
+    CHECK(r.status == 3);
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+
+    // An existing output is replaced whole or not at all.
+    write_file(dir / "keep.png", "old");
+    r = run_wsd(dir, "render bad.wsd -o keep.png --quiet");
+    CHECK(r.status == 1);
+    CHECK(read_file(dir / "keep.png") == "old");
+    CHECK(no_temporaries(dir));
+}
+
+TEST_CASE("SIGINT and SIGTERM stop the render with 130 and 143 and write nothing", "[render][signal]") {
+    TempDir dir;
+    // Far too much work to finish within the timeout, even in a fast build.
+    write_file(dir / "slow.wsd", tiny_scene(1, 2000));
+    RunResult r = run_wsd(dir, "render slow.wsd -o out.png --supersamples 64 --light-samples 4 --quiet",
+                          "timeout --preserve-status -s INT 1");
+    CHECK(r.status == 130);
+    r = run_wsd(dir, "render slow.wsd -o out.png --supersamples 64 --light-samples 4 --quiet",
+                "timeout --preserve-status -s TERM 1");
+    CHECK(r.status == 143);
+    CHECK(list_files(dir) == std::vector<std::string>{"slow.wsd"});
+}
+
+TEST_CASE("four tiles merge into exactly the single render", "[tiles]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene(5, 18));  // 18 rows: tiles of 4 and 5 rows
+    REQUIRE(run_wsd(dir, "render s.wsd -o whole.png --quiet").status == 0);
+    REQUIRE(run_wsd(dir, "render s.wsd -o whole.pfm --quiet --threads 1").status == 0);
+    for (int i = 1; i <= 4; ++i) {
+        const std::string tile = "t" + std::to_string(i) + ".pfm";
+        REQUIRE(run_wsd(dir, "render s.wsd --tile " + std::to_string(i) + "/4 -o " + tile + " --quiet").status == 0);
+        const int y0 = (i - 1) * 18 / 4, y1 = i * 18 / 4;
+        CHECK(pfm_size(read_file(dir / tile)) == std::make_pair(18, y1 - y0));
+    }
+    RunResult r = run_wsd(dir, "merge t3.pfm t1.pfm t4.pfm t2.pfm -o merged.png");
+    REQUIRE(r.status == 0);
+    CHECK(read_file(dir / "merged.png") == read_file(dir / "whole.png"));
+    r = run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.pfm");
+    REQUIRE(r.status == 0);
+    CHECK(read_file(dir / "merged.pfm") == read_file(dir / "whole.pfm"));
+
+    // Regions: a 2×2 grid of rectangles merges just as well; the default tile name is used.
+    for (const char* region : {"0,0,7,9", "7,0,18,9", "0,9,7,18", "7,9,18,18"})
+        REQUIRE(run_wsd(dir, std::string("render s.wsd --quiet --region ") + region).status == 0);
+    r = run_wsd(dir, "merge s.region-0-0-7-9.pfm s.region-7-0-18-9.pfm s.region-0-9-7-18.pfm "
+                     "s.region-7-9-18-18.pfm -o grid.png");
+    REQUIRE(r.status == 0);
+    CHECK(read_file(dir / "grid.png") == read_file(dir / "whole.png"));
+}
+
+TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded tiles", "[tiles]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene(5, 16));
+    write_file(dir / "other.wsd", tiny_scene(5, 16) + "// a different scene text\n");
+    for (int i = 1; i <= 4; ++i)
+        REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile " + std::to_string(i) + "/4 -o t" + std::to_string(i) + ".pfm").status == 0);
+    REQUIRE(run_wsd(dir, "render other.wsd --quiet --tile 2/4 -o foreign.pfm").status == 0);
+    REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile 2/4 --seed 6 -o seeded.pfm").status == 0);
+    REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile 2/4 --supersamples 1 -o cheap.pfm").status == 0);
+    REQUIRE(run_wsd(dir, "render s.wsd --quiet --region 0,2,16,6 -o overlap.pfm").status == 0);
+    write_file(dir / "junk.pfm", "PF\n16 4\n-1.0\nshort");
+
+    struct Case {
+        const char* tiles;
+        const char* named;  // the tile the message must name
+        const char* what;
+    };
+    const Case cases[] = {
+        {"t1.pfm t2.pfm t4.pfm", "3/4", "missing"},
+        {"t1.pfm t2.pfm t2.pfm t3.pfm t4.pfm", "t2.pfm", "duplicate"},
+        {"t1.pfm t2.pfm t3.pfm t4.pfm overlap.pfm", "overlap.pfm", "overlap"},
+        {"t1.pfm foreign.pfm t3.pfm t4.pfm", "foreign.pfm", "foreign scene"},
+        {"t1.pfm seeded.pfm t3.pfm t4.pfm", "seeded.pfm", "seed"},
+        {"t1.pfm cheap.pfm t3.pfm t4.pfm", "cheap.pfm", "settings"},
+        {"t1.pfm t2.pfm t3.pfm t4.pfm junk.pfm", "junk.pfm", "malformed"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.what);
+        const RunResult r = run_wsd(dir, std::string("merge ") + c.tiles + " -o merged.png");
+        CHECK(r.status == 1);
+        CHECK(r.err.find(c.named) != std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "merged.png"));
+    }
+    CHECK(run_wsd(dir, "merge t1.pfm t2.pfm nope.pfm t4.pfm -o merged.png").status == 3);
+    CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.xyz").status == 2);
+    CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o nodir/merged.png").status == 3);
+    CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.png").status == 0);
+}

@@ -1,0 +1,279 @@
+// BVH tests (robustness.md section C): the BVH agrees bit for bit with brute force on random
+// scenes, any-hit agrees with closest-hit, the slab test has no false misses, degenerate inputs
+// build shallow trees, planes stay outside the tree, and the thread count changes nothing.
+#include <catch2/catch.hpp>
+
+#include "geometry_test_util.h"
+#include "render/bvh.h"
+
+using namespace wsd::render;
+using namespace wsd::render::test;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+SceneSpec random_scene(Rng& rng, int n, double size) {
+    std::vector<ShapeSpec> shapes;
+    for (int i = 0; i < n; ++i) {
+        Vec3 c = rng.in_box(Vec3(-size), Vec3(size));
+        double r = size * rng.log_uniform(-3, -0.7);
+        uint32_t mat = rng.uniform() < 0.2 ? 1u : 0u;
+        switch (rng.integer(0, 5)) {
+        case 0: shapes.push_back(sphere(c, r, mat)); break;
+        case 1: {
+            ShapeSpec s = sphere({0, 0, 0}, 1, mat);
+            s.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0}) *
+                                scale({r, r * rng.uniform(0.2, 2), r * rng.uniform(0.2, 2)});
+            shapes.push_back(s);
+            break;
+        }
+        case 2: {
+            ShapeSpec b = box(Vec3(-r), Vec3(r) * rng.uniform(0.3, 2), mat);
+            b.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
+            shapes.push_back(b);
+            break;
+        }
+        case 3: shapes.push_back(box(c - Vec3(r), c + Vec3(r), mat)); break;
+        default:
+            shapes.push_back(triangle(c + 2 * r * rng.unit_vector(), c + 2 * r * rng.unit_vector(),
+                                      c + 2 * r * rng.unit_vector(), mat));
+            break;
+        }
+    }
+    return scene_of(std::move(shapes));
+}
+
+Ray random_ray(Rng& rng, double size) {
+    Vec3 o = rng.in_box(Vec3(-1.5 * size), Vec3(1.5 * size));
+    // Mostly aimed into the scene so that many rays hit something.
+    Vec3 target = rng.in_box(Vec3(-size), Vec3(size));
+    Vec3 d = rng.uniform() < 0.8 ? target - o : rng.unit_vector() * size;
+    return {o, d};
+}
+
+// Asserts that two geometries answer a ray identically (closest hit and occlusion).
+void require_same(const Geometry& a, const Geometry& b, const Ray& ray, double tmax, RayFilter filter) {
+    RayStats stats;
+    auto ha = a.intersect(ray, tmax, stats, filter);
+    auto hb = b.intersect(ray, tmax, stats, filter);
+    REQUIRE(ha.has_value() == hb.has_value());
+    if (ha) {
+        REQUIRE(ha->prim == hb->prim);
+        REQUIRE(ha->t == hb->t);
+        REQUIRE(ha->b1 == hb->b1);
+        REQUIRE(ha->b2 == hb->b2);
+    }
+    bool oa = a.occluded(ray, tmax, stats, filter), ob = b.occluded(ray, tmax, stats, filter);
+    REQUIRE(oa == ob);
+    REQUIRE(oa == ha.has_value());
+}
+
+}  // namespace
+
+TEST_CASE("R26 BVH equals brute force: same primitive and bit-identical t on random scenes") {
+    Rng rng(20260807);
+    const int scenes = 40, rays = ray_budget(100000) / scenes;
+    for (int s = 0; s < scenes; ++s) {
+        double size = rng.log_uniform(-3, 3);
+        SceneSpec spec = random_scene(rng, rng.integer(1, 300), size);
+        if (s % 4 == 0) spec.shapes.push_back(plane(rng.unit_vector(), rng.uniform(-size, size)));
+        auto bvh = build_ok(spec, true);
+        auto brute = build_ok(spec, false);
+        REQUIRE(bvh);
+        REQUIRE(brute);
+        INFO("scene " << s << " size " << size);
+        for (int i = 0; i < rays; ++i) {
+            Ray r = random_ray(rng, size);
+            double tmax = rng.uniform() < 0.5 ? kInf : rng.uniform(0, 2);
+            auto filter = static_cast<RayFilter>(rng.integer(0, 2));
+            require_same(*bvh, *brute, r, tmax, filter);
+        }
+    }
+}
+
+TEST_CASE("R26 ties resolve to the lowest primitive id in both traversals") {
+    // Coincident copies of the same shapes: every hit is a tie.
+    std::vector<ShapeSpec> shapes;
+    for (int i = 0; i < 20; ++i) {
+        shapes.push_back(triangle({-1, -1, 5}, {1, -1, 5}, {0, 1, 5}));
+        shapes.push_back(sphere({3, 0, 5}, 1));
+        shapes.push_back(box({-4, -1, 4}, {-2, 1, 6}));
+    }
+    auto bvh = build_ok(scene_of(shapes), true);
+    auto brute = build_ok(scene_of(shapes), false);
+    REQUIRE(bvh);
+    Rng rng(7);
+    for (int i = 0; i < 2000; ++i) {
+        Ray r{{rng.uniform(-5, 5), rng.uniform(-2, 2), 0}, {0, 0, 1}};
+        require_same(*bvh, *brute, r, kInf, RayFilter::All);
+        RayStats stats;
+        if (auto h = bvh->intersect(r, kInf, stats)) CHECK(h->prim < 3);
+    }
+}
+
+TEST_CASE("R20 slab test: no false misses for rays aimed at box faces from far away") {
+    Rng rng(99);
+    for (double distance : {10.0, 1e3, 1e5}) {
+        int misses = 0;
+        const int n = ray_budget(200000);
+        for (int i = 0; i < n; ++i) {
+            Vec3 c = rng.in_box(Vec3(-1), Vec3(1));
+            Vec3 e(rng.log_uniform(-3, 1), rng.log_uniform(-3, 1), rng.log_uniform(-3, 1));
+            Bounds3f b = Bounds3f::around(c - e, c + e);
+            Bvh4Node node{};
+            for (int lane = 0; lane < 4; ++lane)
+                for (int a = 0; a < 3; ++a) {
+                    node.lo[a][lane] = lane == 0 ? b.lo[a] : std::numeric_limits<float>::infinity();
+                    node.hi[a][lane] = lane == 0 ? b.hi[a] : -std::numeric_limits<float>::infinity();
+                }
+            // A point well inside one face, approached from outside that face.
+            int axis = rng.integer(0, 2);
+            bool upper = rng.uniform() < 0.5;
+            Vec3 p;
+            for (int a = 0; a < 3; ++a)
+                p[a] = rng.uniform(0.01, 0.99) * (static_cast<double>(b.hi[a]) - b.lo[a]) + b.lo[a];
+            p[axis] = upper ? b.hi[axis] : b.lo[axis];
+            Vec3 d = rng.unit_vector();
+            if ((d[axis] > 0) == upper) d[axis] = -d[axis];
+            Vec3 o = p - distance * d;
+            RayBoxTest test;
+            test.init(o, d);
+            float t[4];
+            if (!(test.hit4(node, std::numeric_limits<float>::infinity(), t) & 1)) ++misses;
+        }
+        INFO("distance " << distance);
+        CHECK(misses == 0);
+    }
+}
+
+TEST_CASE("R21 axis-parallel rays, ±0 components, origins on slab planes and flat boxes") {
+    // Axis-aligned triangles make flat leaf boxes; boxes share faces with them.
+    std::vector<ShapeSpec> shapes;
+    for (int i = 0; i < 8; ++i) {
+        double z = i;
+        shapes.push_back(triangle({0, 0, z}, {1, 0, z}, {0, 1, z}));
+        shapes.push_back(triangle({2, 0, 0}, {2, 1, z + 1}, {2, 0, z + 1}));
+        shapes.push_back(box({3, 0, z}, {4, 1, z + 0.5}));
+    }
+    auto bvh = build_ok(scene_of(shapes), true);
+    auto brute = build_ok(scene_of(shapes), false);
+    REQUIRE(bvh);
+    const double coords[] = {-1, 0, 0.25, 0.5, 1, 2, 3, 3.5, 4, 7.5, 8, 9};
+    int hits = 0;
+    for (double x : coords)
+        for (double y : coords)
+            for (double z : coords)
+                for (int axis = 0; axis < 3; ++axis)
+                    for (double sign : {1.0, -1.0})
+                        for (double zero : {0.0, -0.0}) {
+                            Vec3 d(zero, zero, zero);
+                            d[axis] = sign;
+                            Ray r{{x, y, z}, d};
+                            require_same(*bvh, *brute, r, kInf, RayFilter::All);
+                            RayStats stats;
+                            hits += bvh->intersect(r, kInf, stats) ? 1 : 0;
+                        }
+    CHECK(hits > 100);
+}
+
+TEST_CASE("R24 degenerate BVH builds terminate shallow and agree with brute force") {
+    SECTION("no primitives") {
+        auto g = build_ok(scene_of({}));
+        REQUIRE(g);
+        RayStats stats;
+        CHECK_FALSE(g->intersect({{0, 0, 0}, {0, 0, 1}}, kInf, stats));
+        CHECK_FALSE(g->occluded({{0, 0, 0}, {0, 0, 1}}, kInf, stats));
+        CHECK(g->primitive_count() == 0);
+    }
+    SECTION("one primitive") {
+        auto g = build_ok(scene_of({sphere({0, 0, 5}, 1)}));
+        REQUIRE(g);
+        RayStats stats;
+        CHECK(g->intersect({{0, 0, 0}, {0, 0, 1}}, kInf, stats));
+    }
+    SECTION("identical primitives, coplanar primitives, sizes from 1e-6 to 1e6") {
+        std::vector<Bounds3f> same(100000, Bounds3f::around(Vec3(0), Vec3(1)));
+        BvhOptions opt;
+        Bvh a = build_bvh(same, opt);
+        CHECK(a.depth < kMaxBvhDepth);
+        CHECK(a.order.size() == same.size());
+
+        auto m = std::make_shared<MeshData>();
+        m->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+        m->faces.assign(static_cast<size_t>(ray_budget(20000)), glm::uvec3(0, 1, 2));
+        std::vector<ShapeSpec> shapes = {mesh(m)};
+        for (int k = -6; k <= 6; ++k) shapes.push_back(sphere({std::pow(10.0, k), 0, 0}, std::pow(10.0, k) / 2));
+        for (int i = 0; i < 200; ++i)
+            shapes.push_back(triangle({i, 0, 2}, {i + 1, 0, 2}, {i, 1, 2}));  // all in z = 2
+        auto bvh = build_ok(scene_of(shapes), true);
+        auto brute = build_ok(scene_of(shapes), false);
+        REQUIRE(bvh);
+        Rng rng(5);
+        for (int i = 0; i < 2000; ++i) {
+            Vec3 o(rng.log_uniform(-7, 7) * (rng.uniform() < 0.5 ? -1 : 1), rng.uniform(-2, 2), rng.uniform(-5, 5));
+            Vec3 t(rng.uniform(-1, 200), rng.uniform(-1, 1), rng.uniform(-1, 3));
+            require_same(*bvh, *brute, {o, t - o}, kInf, RayFilter::All);
+        }
+        RayStats stats;
+        auto h = bvh->intersect({{0.25, 0.25, -1}, {0, 0, 1}}, kInf, stats);
+        REQUIRE(h);
+        CHECK(h->prim == 0);  // the first of 20000 coincident faces
+    }
+    SECTION("skewed sizes keep the depth bounded") {
+        std::vector<Bounds3f> nested;
+        for (int i = 0; i < 5000; ++i) {
+            double r = std::pow(1.01, i) * 1e-6;
+            nested.push_back(Bounds3f::around(Vec3(r), Vec3(2 * r)));
+        }
+        Bvh b = build_bvh(nested, BvhOptions{});
+        CHECK(b.depth < kMaxBvhDepth);
+    }
+}
+
+TEST_CASE("R60 infinite planes stay out of the BVH") {
+    Rng rng(60);
+    SceneSpec spec = random_scene(rng, 200, 10);
+    auto without = build_ok(spec);
+    spec.shapes.push_back(plane({0, 1, 0}, -20));
+    spec.shapes.push_back(plane({0, 0, -1}, -1e6));
+    spec.shapes.push_back(plane({1, 1, 0}, 1e6));
+    auto with = build_ok(spec);
+    auto brute = build_ok(spec, false);
+    REQUIRE(with);
+    REQUIRE(without);
+    // The planes add nothing to the tree.
+    CHECK(with->memory_bytes() > without->memory_bytes());
+    CHECK(with->memory_bytes() - without->memory_bytes() < 1000);
+    for (int i = 0; i < 5000; ++i) require_same(*with, *brute, random_ray(rng, 30), kInf, RayFilter::All);
+    // Parallel to the first plane (canonical id 200), in it and beside it: never that plane,
+    // and finite answers.
+    RayStats stats;
+    for (double y : {-20.0, -25.0, -15.0}) {
+        auto h = with->intersect({{-1e3, y, 0}, {1, 0, 0}}, kInf, stats);
+        if (h) {
+            CHECK(std::isfinite(h->t));
+            CHECK(h->prim != 200);
+        }
+    }
+    CHECK_FALSE(with->intersect({{-1e3, -25, 0}, {-1, 0, 0}}, kInf, stats));
+}
+
+TEST_CASE("R52 the BVH build does not depend on the thread count") {
+    Rng rng(52);
+    auto m = perturbed_uv_sphere(150, 150, rng);  // 44,700 triangles: several parallel subtrees
+    SceneSpec spec = scene_of({mesh(m)});
+    std::vector<SpecError> errors;
+    auto one = Geometry::build(spec, errors, true, 1);
+    auto two = Geometry::build(spec, errors, true, 2);
+    auto all = Geometry::build(spec, errors, true, 0);
+    REQUIRE(one);
+    REQUIRE(two);
+    REQUIRE(all);
+    CHECK(one->memory_bytes() == two->memory_bytes());
+    for (int i = 0; i < ray_budget(20000); ++i) {
+        Ray r = random_ray(rng, 6);
+        require_same(*one, *two, r, kInf, RayFilter::All);
+        require_same(*one, *all, r, kInf, RayFilter::All);
+    }
+}
