@@ -2,6 +2,7 @@
 // and a moon in the spherical UV layout, a dice in the unfolded-cube cross layout, marble floor
 // tiles (from the project's own Perlin noise), and a torus OBJ with normals and UVs.
 // Usage: make_assets EXAMPLES_DIR (writes EXAMPLES_DIR/textures/*.png and models/torus.obj).
+#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -159,6 +160,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string dir = argv[1];
+    std::error_code ec;
+    std::filesystem::create_directories(dir + "/textures", ec);
+    std::filesystem::create_directories(dir + "/models", ec);
     const std::pair<const char*, Film> outputs[] = {
         {"earth.png", earth()}, {"moon.png", moon()}, {"dice.png", dice()}, {"marble-tiles.png", marble_tiles()}};
     for (const auto& [name, film] : outputs) {
