@@ -44,6 +44,16 @@ struct SurfaceHit {
 // Which primitives a query sees; shadow rays skip transmissive ones and then walk them in order.
 enum class RayFilter : uint8_t { All, OpaqueOnly, TransmissiveOnly };
 
+class Shaft;
+
+// The opaque primitives that the shadow rays of one shading point towards one area light may
+// meet (Geometry::gather_shaft), so that each of those rays tests only them.
+struct ShaftCandidates {
+    static constexpr int kMax = 32;  // more than this: not worth it, trace each ray in full
+    uint32_t entries[kMax];
+    int count = 0;
+};
+
 class Geometry {
 public:
     // Builds world-space primitives and the BVH. Appends an error for every degenerate input
@@ -58,6 +68,14 @@ public:
     bool occluded(const Ray& ray, double tmax, RayStats& stats,
                   RayFilter filter = RayFilter::OpaqueOnly) const;
     SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
+
+    // Collects the opaque primitives whose BVH leaves meet `shaft`. False when there is no BVH or
+    // more than ShaftCandidates::kMax of them: then use occluded() for each ray.
+    bool gather_shaft(const Shaft& shaft, ShaftCandidates& out, RayStats& stats) const;
+    // occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the shaft the
+    // candidates were gathered for: the same answer, testing only those primitives.
+    bool occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
+                        RayStats& stats) const;
 
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);

@@ -16,6 +16,7 @@
 
 #include "render/sampling.h"
 #include "render/scene.h"
+#include "render/shaft.h"
 
 namespace wsd::render {
 
@@ -254,10 +255,13 @@ private:
                     sd += v * term.nl;
                     ss += v * term.sp;
                 }
-            } else if (kAdaptive && (light.adaptive || force_adaptive_) && light.count() > 1) {
-                adaptive_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
             } else {
-                full_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
+                use_shaft_ = light.count() >= kShaftMinSamples && gather_shaft(sh, light);
+                if (kAdaptive && (light.adaptive || force_adaptive_) && light.count() > 1)
+                    adaptive_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
+                else
+                    full_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
+                use_shaft_ = false;
             }
             sum += light.radiance * (kd * c * sd + m.specular * ss) * light.inv_count;
         }
@@ -354,12 +358,25 @@ private:
         }
     }
 
+    // The opaque primitives that any shadow ray from this point to the light may meet, when
+    // there are few of them: one BVH walk instead of one a sample.
+    bool gather_shaft(const Shading& sh, const Light& light) {
+        const double radius = std::max(glm::length(sh.o_front - sh.p), glm::length(sh.o_back - sh.p));
+        Shaft shaft;
+        if (!shaft.init(sh.p, radius, light.corner, light.du * double(light.nu),
+                        light.dv * double(light.nv)))
+            return false;
+        return geom_.gather_shaft(shaft, shaft_, stats_);
+    }
+
     // The shadow ray from the spawn origin on the light's side to P (d = P − origin, tmax = 1).
     Vis visibility(const Shading& sh, const Vec3& to_light, const Vec3& P) {
         const Vec3 origin = glm::dot(to_light, sh.ng) < 0 ? sh.o_back : sh.o_front;
         const Ray ray{origin, P - origin};
         ++stats_.shadow_rays;
-        if (geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly)) return Vis(0);
+        const bool blocked = use_shaft_ ? geom_.occluded_among(shaft_, ray, 1.0, stats_)
+                                        : geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly);
+        if (blocked) return Vis(0);
         if constexpr (kTransmissive) {
             if (!scene_.may_cross_transmissive(origin, P)) return Color(1);
             return transmittance(origin, P);
@@ -398,6 +415,11 @@ private:
         }
         return Color(0);
     }
+
+    // Area lights with fewer samples trace each shadow ray in full (gathering costs about one).
+    static constexpr int kShaftMinSamples = 4;
+    ShaftCandidates shaft_;  // valid while use_shaft_
+    bool use_shaft_ = false;
 
     static constexpr uint8_t kUnknown = 0, kFilled = 1, kProbed = 2;
 

@@ -8,7 +8,7 @@
 
 namespace wsd::render {
 
-RayPre::RayPre(const Ray& r) : o(r.o), d(r.d) {
+RayPre::RayPre(const Ray& r, bool with_box) : o(r.o), d(r.d) {
     Vec3 ad = abs3(d);
     kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
     kx = kz + 1 == 3 ? 0 : kz + 1;
@@ -19,7 +19,7 @@ RayPre::RayPre(const Ray& r) : o(r.o), d(r.d) {
     sz = 1.0 / d[kz];
     a = glm::dot(d, d);
     inv_a = 1.0 / a;
-    box.init(o, d);
+    if (with_box) box.init(o, d);
 }
 
 Vec2 box_uv(const Vec3& p, const Vec3& lo, const Vec3& hi, int face) {

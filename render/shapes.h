@@ -21,7 +21,8 @@ struct RayPre {
     double a = 1, inv_a = 1;  // d·d, for spheres
     RayBoxTest box;
 
-    explicit RayPre(const Ray& r);
+    // with_box: also the slab-test constants (only BVH traversal needs them).
+    explicit RayPre(const Ray& r, bool with_box = true);
 };
 
 // Triangle: indices into the world vertex pool and the canonical primitive id.

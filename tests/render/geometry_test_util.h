@@ -116,6 +116,48 @@ inline SceneSpec scene_of(std::vector<ShapeSpec> shapes, int materials = 2) {
     return spec;
 }
 
+// n random spheres, ellipsoids, boxes (rotated or not) and triangles within [-size, size]³;
+// about a fifth of them transmissive (material 1).
+inline SceneSpec random_scene(Rng& rng, int n, double size) {
+    std::vector<ShapeSpec> shapes;
+    for (int i = 0; i < n; ++i) {
+        Vec3 c = rng.in_box(Vec3(-size), Vec3(size));
+        double r = size * rng.log_uniform(-3, -0.7);
+        uint32_t mat = rng.uniform() < 0.2 ? 1u : 0u;
+        switch (rng.integer(0, 5)) {
+        case 0: shapes.push_back(sphere(c, r, mat)); break;
+        case 1: {
+            ShapeSpec s = sphere({0, 0, 0}, 1, mat);
+            s.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0}) *
+                                scale({r, r * rng.uniform(0.2, 2), r * rng.uniform(0.2, 2)});
+            shapes.push_back(s);
+            break;
+        }
+        case 2: {
+            ShapeSpec b = box(Vec3(-r), Vec3(r) * rng.uniform(0.3, 2), mat);
+            b.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
+            shapes.push_back(b);
+            break;
+        }
+        case 3: shapes.push_back(box(c - Vec3(r), c + Vec3(r), mat)); break;
+        default:
+            shapes.push_back(triangle(c + 2 * r * rng.unit_vector(), c + 2 * r * rng.unit_vector(),
+                                      c + 2 * r * rng.unit_vector(), mat));
+            break;
+        }
+    }
+    return scene_of(std::move(shapes));
+}
+
+// A ray from around the scene, mostly aimed into it.
+inline Ray random_ray(Rng& rng, double size) {
+    Vec3 o = rng.in_box(Vec3(-1.5 * size), Vec3(1.5 * size));
+    // Mostly aimed into the scene so that many rays hit something.
+    Vec3 target = rng.in_box(Vec3(-size), Vec3(size));
+    Vec3 d = rng.uniform() < 0.8 ? target - o : rng.unit_vector() * size;
+    return {o, d};
+}
+
 inline std::unique_ptr<Geometry> build_ok(const SceneSpec& spec, bool use_bvh = true, int threads = 1) {
     std::vector<SpecError> errors;
     auto g = Geometry::build(spec, errors, use_bvh, threads);
