@@ -120,6 +120,13 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
     if (facts.area_lights)
         for (const bool on : {false, true})
             add("adaptive_lights", on ? "on" : "off", [&](SceneOverrides& o) { o.adaptive_lights = on; });
+    // Adaptive depth: 0 traces every reflected and refracted ray; 1/512 is the default.
+    const std::vector<std::pair<std::string, double>> bailouts =
+        quick ? std::vector<std::pair<std::string, double>>{{"0", 0.0}, {"1/512", 1.0 / 512}, {"1/8", 0.125}}
+              : std::vector<std::pair<std::string, double>>{
+                    {"0", 0.0}, {"1/512", 1.0 / 512}, {"1/64", 1.0 / 64}, {"1/8", 0.125}, {"1/2", 0.5}};
+    for (const auto& [label, value] : bailouts)
+        add("bailout", label, [&, v = value](SceneOverrides& o) { o.bailout = v; });
     return settings;
 }
 
@@ -193,11 +200,12 @@ int run_bench(const BenchArgs& args) {
     reference.max_depth = args.reference_depth >= 0 ? args.reference_depth : std::max(facts.max_depth, 10);
     reference.adaptive_supersampling = false;
     reference.adaptive_lights = false;
+    reference.bailout = 0.0;
     info.reference_settings = "supersamples " + std::to_string(*reference.supersamples) +
                               (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" +
                                                        std::to_string(ref_light)
                                                  : std::string()) +
-                              ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling";
+                              ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling, bailout 0";
 
     CancelOnSignal signals;
     const bool verbose = !args.quiet;

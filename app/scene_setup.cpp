@@ -18,6 +18,7 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     if (max_depth) s.max_depth = *max_depth;
     if (seed) s.seed = *seed;
     if (adaptive_supersampling) s.adaptive_supersampling = *adaptive_supersampling;
+    if (bailout) s.bailout = *bailout;
     for (render::LightSpec& light : spec.lights) {
         if (light.kind != render::LightKind::Area) continue;
         if (light_samples) light.samples_u = light.samples_v = *light_samples;

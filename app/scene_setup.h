@@ -18,6 +18,7 @@ struct SceneOverrides {
     std::optional<uint32_t> seed;
     std::optional<bool> adaptive_supersampling;
     std::optional<bool> adaptive_lights;  // every area light's own `adaptive` flag
+    std::optional<double> bailout;        // adaptive depth: settings.bailout
 
     void apply(render::SceneSpec& spec) const;
 };

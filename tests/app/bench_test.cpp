@@ -62,7 +62,9 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
                "light area { position <1, 4, -2>  u <1.5, 0, 0>  v <0, 0, 1.5>  samples 2 }\n"
                "plane { normal <0, 1, 0>  distance 0  material { texture checker { scale 0.13 } } }\n"
                "sphere { center <0.6, 0.5, 0.5>  radius 0.5  material { color <0.8, 0.8, 0.8>  reflection 0.6 } }\n"
-               "box { min <-1.4, 0, 0>  max <-0.6, 0.9, 0.8>  material { color <0.2, 0.5, 0.9> } }\n");
+               "box { min <-1.4, 0, 0>  max <-0.6, 0.9, 0.8>  material { color <0.2, 0.5, 0.9> } }\n"
+               // Reflection 0.1: below a bailout of 1/8, above 1/512.
+               "sphere { center <-0.1, 0.35, -0.9>  radius 0.35  material { color <0.9, 0.3, 0.2>  reflection 0.1 } }\n");
     const RunResult r = run_wsd(dir, "bench b.wsd --quick -o out --reference-light-samples 4 --threads 2");
     REQUIRE(r.status == 0);
     CHECK(r.out.find("supersamples") != std::string::npos);  // the table
@@ -78,7 +80,7 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
         REQUIRE(col.count(name));
 
     std::map<std::string, std::vector<std::string>> values;
-    std::map<std::string, double> rmse;
+    std::map<std::string, double> rmse, secondary;
     for (size_t i = 1; i < rows.size(); ++i) {
         const auto& row = rows[i];
         REQUIRE(row.size() == header.size());
@@ -89,13 +91,20 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
         CHECK(std::stod(row[col["cpu_seconds"]]) >= 0);
         CHECK(std::stod(row[col["ssim"]]) <= 1.0);
         rmse[row[col["knob"]] + "=" + row[col["value"]]] = e;
+        secondary[row[col["knob"]] + "=" + row[col["value"]]] =
+            std::stod(row[col["reflection_rays"]]) + std::stod(row[col["refraction_rays"]]);
     }
     CHECK(values["supersamples"] == std::vector<std::string>{"1", "4", "16"});
     CHECK(values["light_samples"] == std::vector<std::string>{"1", "4", "16"});
     CHECK(values["max_depth"] == std::vector<std::string>{"0", "1", "2"});
     CHECK(values["adaptive_aa"] == std::vector<std::string>{"off", "on"});
     CHECK(values["adaptive_lights"] == std::vector<std::string>{"off", "on"});
-    CHECK(values.size() == 5);
+    CHECK(values["bailout"] == std::vector<std::string>{"0", "1/512", "1/8"});
+    CHECK(values.size() == 6);
+    // A higher bailout traces fewer secondary rays, never more.
+    CHECK(secondary["bailout=0"] >= secondary["bailout=1/512"]);
+    CHECK(secondary["bailout=1/512"] >= secondary["bailout=1/8"]);
+    CHECK(secondary["bailout=0"] > secondary["bailout=1/8"]);
     CHECK(rmse["supersamples=1"] > rmse["supersamples=4"]);
     CHECK(rmse["supersamples=4"] > rmse["supersamples=16"]);
     // Depth 0 drops the mirror's reflection entirely; depth 2 is far closer.
@@ -107,8 +116,8 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
 
     const std::string svg = read_file(dir / "out/bench.svg");
     CHECK(balanced(svg));
-    CHECK(count_tags(svg, "path") == 5);
-    for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights"})
+    CHECK(count_tags(svg, "path") == 6);
+    for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights", "bailout"})
         CHECK(svg.find(std::string(">") + knob + "</text>") != std::string::npos);  // legend
     CHECK(svg.find("Pareto") != std::string::npos);
 }
