@@ -81,6 +81,8 @@ int run_cli(int argc, char** argv) {
     render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
         ->check(CLI::Range(0, 4096));
     render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
+    render->add_flag("--general", render_args.general,
+                     "use the general integrator with every effect enabled (same image, slower; for checking)");
     render->add_flag("--stats", render_args.stats, "print render statistics at the end");
     render->add_option("--stats-json", render_args.stats_json, "write render statistics as JSON");
     render->add_flag("-q,--quiet", render_args.quiet, "no progress output");

@@ -145,6 +145,7 @@ int run_render(const RenderArgs& args) {
     render::RenderOptions options;
     options.threads = args.threads;
     options.use_bvh = !args.no_bvh;
+    options.specialise = !args.general;
     options.region = tile.region;
     options.adaptive_lights = args.adaptive_lights;
     options.cancel = signals.flag();

@@ -29,6 +29,7 @@ struct RenderArgs {
     SceneOverrides overrides;
     int threads = 0;
     bool no_bvh = false;
+    bool general = false;  // the unspecialised integrator (every effect enabled)
     bool stats = false;
     std::string stats_json;
     bool quiet = false;

@@ -1,6 +1,7 @@
 # The gallery's contract, run by CTest through the real `wsd` executable:
 # - every example scene and include fragment passes `wsd check`;
-# - every example renders at 64×64 without an error and without a NaN or infinite sample;
+# - every example renders at 64×64 without an error and without a NaN or infinite sample, and the
+#   general integrator (--general) gives the specialised one's image byte for byte;
 # - every example has its picture in docs/gallery/ and the README shows it.
 # Usage: cmake -DWSD=path/to/wsd -DSRC=repo -P check_examples.cmake
 file(GLOB scenes ${SRC}/examples/*.wsd)
@@ -35,6 +36,21 @@ foreach(scene ${scenes})
     string(JSON nonfinite GET "${json}" nonfinite_samples)
     if(NOT nonfinite EQUAL 0)
       message(SEND_ERROR "${name}: ${nonfinite} NaN or infinite samples at 64x64")
+      set(failed 1)
+    endif()
+  endif()
+  # The integrator specialised on the scene's effects must give the general one's image exactly.
+  execute_process(COMMAND ${WSD} render ${scene} -o ${tmp}/${name}-general.png --width 64 --height 64
+                          --quiet --general
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT EXISTS ${tmp}/${name}-general.png OR NOT EXISTS ${tmp}/${name}.png)
+    message(SEND_ERROR "wsd render --general ${scene} at 64x64 failed (${rc}):\n${out}${err}")
+    set(failed 1)
+  else()
+    file(SHA256 ${tmp}/${name}.png special)
+    file(SHA256 ${tmp}/${name}-general.png general)
+    if(NOT special STREQUAL general)
+      message(SEND_ERROR "${name}: the specialised integrator's image differs from the general one's")
       set(failed 1)
     endif()
   endif()
