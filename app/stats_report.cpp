@@ -1,6 +1,7 @@
 // Formatting of render statistics. Percentages guard against zero tests; JSON numbers are
 // printed with enough digits to round-trip, strings are escaped.
 #include "app/stats_report.h"
+#include "app/io_util.h"
 
 #include <cmath>
 #include <cstdio>
@@ -19,24 +20,6 @@ std::string fixed(double value, int decimals) {
 std::string percent(uint64_t part, uint64_t whole) {
     if (whole == 0) return "-";
     return fixed(100.0 * static_cast<double>(part) / static_cast<double>(whole), 2) + "%";
-}
-
-std::string json_escape(const std::string& s) {
-    std::string out;
-    for (const char c : s) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (u < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", u);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out;
 }
 
 std::string json_number(double v) {

@@ -1,6 +1,7 @@
 // Encoding and decoding tile files: PFM bytes plus the `WSDTILE` trailer. The trailer's JSON is
 // flat (numbers, strings, arrays of numbers), so a small hand parser reads it without a library.
 #include "app/tile_file.h"
+#include "app/io_util.h"
 
 #include <cctype>
 #include <cstring>
@@ -14,23 +15,7 @@ namespace {
 
 constexpr const char* trailer_tag = "WSDTILE ";
 
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (const char c : s) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (u < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", u);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
+std::string json_string(const std::string& s) { return "\"" + json_escape(s) + "\""; }
 
 // A value of the trailer: a number, a string, or a list of numbers.
 struct JsonValue {

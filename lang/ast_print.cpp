@@ -35,25 +35,6 @@ PackedElementSpans packed_element_spans(const PackedVectors& packed, size_t inde
 
 namespace {
 
-const char* binary_name(BinaryOp op) {
-    switch (op) {
-    case BinaryOp::Or: return "||";
-    case BinaryOp::And: return "&&";
-    case BinaryOp::Eq: return "==";
-    case BinaryOp::Ne: return "!=";
-    case BinaryOp::Lt: return "<";
-    case BinaryOp::Le: return "<=";
-    case BinaryOp::Gt: return ">";
-    case BinaryOp::Ge: return ">=";
-    case BinaryOp::Add: return "+";
-    case BinaryOp::Sub: return "-";
-    case BinaryOp::Mul: return "*";
-    case BinaryOp::Div: return "/";
-    case BinaryOp::Mod: return "%";
-    }
-    return "?";
-}
-
 const char* block_name(BlockKind kind) {
     switch (kind) {
     case BlockKind::Settings: return "settings";
@@ -206,7 +187,7 @@ void Printer::expr(const Expr& e) {
     case ExprKind::Vector: open("vector", e.span); break;
     case ExprKind::List: open("list", e.span); break;
     case ExprKind::Unary: open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span); break;
-    case ExprKind::Binary: open(std::string("binary ") + binary_name(e.binary_op), e.op_span); break;
+    case ExprKind::Binary: open(std::string("binary ") + binary_op_text(e.binary_op), e.op_span); break;
     case ExprKind::Call: open("call " + e.text, e.span); break;
     case ExprKind::Member: open("member " + e.text, e.op_span); break;
     case ExprKind::Index: open("index", e.op_span); break;

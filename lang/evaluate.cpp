@@ -12,25 +12,6 @@ namespace {
 
 constexpr size_t kMaxStringLength = size_t(1) << 24;
 
-const char* op_text(BinaryOp op) {
-    switch (op) {
-    case BinaryOp::Or: return "||";
-    case BinaryOp::And: return "&&";
-    case BinaryOp::Eq: return "==";
-    case BinaryOp::Ne: return "!=";
-    case BinaryOp::Lt: return "<";
-    case BinaryOp::Le: return "<=";
-    case BinaryOp::Gt: return ">";
-    case BinaryOp::Ge: return ">=";
-    case BinaryOp::Add: return "+";
-    case BinaryOp::Sub: return "-";
-    case BinaryOp::Mul: return "*";
-    case BinaryOp::Div: return "/";
-    case BinaryOp::Mod: return "%";
-    }
-    return "?";
-}
-
 std::string quoted(std::string_view s) {
     std::string out(1, '\'');
     out.append(s);
@@ -173,7 +154,7 @@ std::optional<Value> Interpreter::eval_logical(const Expr& expr) {
     std::optional<Value> a = eval(*expr.args[0]);
     if (!a) return std::nullopt;
     if (!a->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(op_text(expr.binary_op)) + " needs bools, found " + type_name(a->type()) +
+        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " + type_name(a->type()) +
                                        " on the left");
         return std::nullopt;
     }
@@ -181,7 +162,7 @@ std::optional<Value> Interpreter::eval_logical(const Expr& expr) {
     std::optional<Value> b = eval(*expr.args[1]);
     if (!b) return std::nullopt;
     if (!b->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(op_text(expr.binary_op)) + " needs bools, found " + type_name(b->type()) +
+        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " + type_name(b->type()) +
                                        " on the right");
         return std::nullopt;
     }
@@ -207,7 +188,7 @@ std::optional<Value> Interpreter::eval_binary(const Expr& expr) {
 
 std::optional<Value> Interpreter::compare(const Expr& expr, const Value& a, const Value& b) {
     const BinaryOp op = expr.binary_op;
-    const std::string sym = quoted(op_text(op));
+    const std::string sym = quoted(binary_op_text(op));
     if (op == BinaryOp::Eq || op == BinaryOp::Ne) {
         if (a.type() != b.type()) {
             diags_.error(expr.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
@@ -232,7 +213,7 @@ std::optional<Value> Interpreter::compare(const Expr& expr, const Value& a, cons
 
 std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, const Value& b) {
     const BinaryOp op = expr.binary_op;
-    const std::string sym = quoted(op_text(op));
+    const std::string sym = quoted(binary_op_text(op));
     auto fail = [&](const std::string& message) -> std::optional<Value> {
         diags_.error(expr.op_span, message);
         return std::nullopt;
