@@ -39,8 +39,8 @@ parallel --will-cite -j 2 --halt now,fail=1 \
 "$wsd" merge region-*.pfm -o merged-regions.png
 cmp whole.png merged-regions.png
 
-# The --sshlogin recipe with ':' (the local host, run without ssh): --return names the tiles to
-# bring back, --cleanup would delete them on a remote host.
+# The --sshlogin recipe with ':' (the local host, run without ssh). This checks the command line
+# only: for ':' parallel transfers nothing and ignores --return (with a warning).
 mkdir ssh && cd ssh
 parallel --will-cite -j 2 --halt now,fail=1 --sshlogin : --return 'tile-{}.pfm' --cleanup \
   "$wsd" render "$scene" "${opts[@]}" --tile '{}/3' -o 'tile-{}.pfm' ::: 1 2 3
