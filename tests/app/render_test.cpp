@@ -191,4 +191,15 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.xyz").status == 2);
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o nodir/merged.png").status == 3);
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.png").status == 0);
+
+    // A failed merge leaves an existing output as it was, and no temporary file behind.
+    const std::string good = read_file(dir / "merged.png");
+    REQUIRE_FALSE(good.empty());
+    auto before = list_files(dir);
+    CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t4.pfm -o merged.png").status == 1);
+    CHECK(read_file(dir / "merged.png") == good);
+    auto after = list_files(dir);
+    std::sort(before.begin(), before.end());
+    std::sort(after.begin(), after.end());
+    CHECK(after == before);
 }
