@@ -38,8 +38,11 @@ void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit
     if (!m.normals.empty()) {
         Vec3 n = b0 * Vec3(m.normals[i0]) + b1 * Vec3(m.normals[i1]) + b2 * Vec3(m.normals[i2]);
         Vec3 ns = safe_normalize(x.identity ? n : x.normal(n), s.ng);
-        // An interpolated normal on the far side of the facet would send reflections into it.
-        s.ns = glm::dot(ns, s.ng) < 0 ? -ns : ns;
+        // An interpolated normal on the far side of the facet would send reflections into it:
+        // mirror it about the facet's plane (not negate it, which would jump from grazing one way
+        // to grazing the other where the interpolation crosses the plane: a dark seam, R35).
+        const double below = glm::dot(ns, s.ng);
+        s.ns = below < 0 ? ns - (2.0 * below) * s.ng : ns;
     }
 }
 

@@ -74,6 +74,8 @@ struct Path {
 // Per-hit constants of the light loop, hoisted out of the sample loop.
 struct Shading {
     Vec3 p, ng, N, V;
+    Vec3 ng_v;         // the geometric normal on the viewer's side
+    bool opaque;       // no transmission: light from behind the surface cannot reach the viewer's side
     double nv;
     bool diffuse;      // (1 − t)·diffuse > 0
     double specular;   // the material's specular weight
@@ -92,6 +94,9 @@ struct Term {
 inline Term sample_term(const Shading& sh, const Vec3& to_light) {
     const double d2 = glm::dot(to_light, to_light);
     if (!(d2 > 0.0 && d2 < kInfinity)) return {0, 0, false};
+    // A sample behind an opaque surface is blocked by the surface itself, whatever a bent or
+    // interpolated N says (robustness.md T11 (b), R35: no light leaks through).
+    if (sh.opaque && !(glm::dot(to_light, sh.ng_v) > 0)) return {0, 0, false};
     const Vec3 L = to_light * (1.0 / std::sqrt(d2));
     const double nl = glm::dot(sh.N, L);
     double sp = 0;
@@ -234,6 +239,8 @@ private:
         Shading sh;
         sh.p = s.p;
         sh.ng = s.ng;
+        sh.ng_v = glm::dot(V, s.ng) > 0 ? s.ng : -s.ng;
+        sh.opaque = !(t > 0);
         sh.N = N;
         sh.V = V;
         sh.nv = glm::dot(N, V);
