@@ -1,5 +1,6 @@
 // Helpers for building render::SceneSpecs by hand in tests (no .wsd involved): shapes, materials,
-// lights, a one-call build+render, pixel access, and single-ray tracing through a Tracer.
+// lights, a one-call build+render that asserts no NaN/Inf sample, pixel access, and single-ray
+// tracing through a Tracer.
 #pragma once
 
 #include <catch2/catch.hpp>
@@ -137,9 +138,13 @@ inline std::shared_ptr<const render::Scene> build(const render::SceneSpec& spec)
     return scene;
 }
 
+// Every render made through this helper asserts that no sample was NaN or infinite (robustness.md
+// R51: the film replaces such a sample by 0 and counts it in stats.nonfinite_samples).
 inline render::RenderResult render_spec(const render::SceneSpec& spec, render::RenderOptions options = {}) {
     if (options.threads == 0) options.threads = 2;
-    return render::render(*build(spec), options);
+    auto result = render::render(*build(spec), options);
+    CHECK(result.stats.nonfinite_samples == 0);
+    return result;
 }
 
 inline Color pixel(const render::Film& film, int x, int y) {
@@ -163,8 +168,11 @@ struct RayProbe {
     explicit RayProbe(const render::SceneSpec& spec, render::TracerOptions options = {})
         : scene(build(spec)), tracer(render::make_tracer(*scene, options, stats)) {}
 
+    // Asserts that the colour is finite (the film's NaN/Inf check does not see single rays).
     Color trace(Vec3 origin, Vec3 dir, uint64_t key = 1) {
-        return tracer->trace_ray(render::Ray{origin, glm::normalize(dir)}, key);
+        const Color c = tracer->trace_ray(render::Ray{origin, glm::normalize(dir)}, key);
+        if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) FAIL_CHECK("non-finite ray colour");
+        return c;
     }
 };
 
