@@ -273,9 +273,12 @@ Token Lexer::number(uint32_t begin) {
             return make(TokenKind::Number, begin);
         }
     }
-    if (is_ident_char(at(p))) {
-        // `12px`, `0x1F`: one bad token, not a number followed by a name.
-        while (is_ident_char(at(p))) ++p;
+    // `12px`, `0x1F`, `1.2.3`: one bad token, not a number followed by a name or by another number.
+    const auto continues = [this](uint32_t q) {
+        return is_ident_char(at(q)) || (at(q) == '.' && is_digit(at(q + 1)));
+    };
+    if (continues(p)) {
+        while (continues(p)) ++p;
         pos_ = p;
         error(begin, begin, p, "invalid number " + quoted(text_.substr(begin, p - begin)));
         return make(TokenKind::Number, begin);
