@@ -1,5 +1,5 @@
 // Analytic renders: scenes whose every pixel has a closed-form value, checked pixel by pixel
-// (robustness.md R15, R40, R41; wsd-language.md §4 shading formula).
+// (robustness.md R40, R41; wsd-language.md §4 shading formula).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -106,7 +106,7 @@ TEST_CASE("a glass slab at normal incidence reflects ((n-1)/(n+1))^2", "[analyti
     CHECK(two.stats.nonfinite_samples == 0);
 }
 
-TEST_CASE("total internal reflection is a reflection with weight 1, not black", "[analytic]") {
+TEST_CASE("R41: total internal reflection is a reflection with weight 1, not black", "[analytic]") {
     // Camera inside a glass cube: the first face is met at 60° (past the critical angle, 41.8°),
     // the mirrored ray meets the next face at 30° and leaves with weight 1 − F(30°).
     const Color bg{1.0, 0.5, 0.25};
@@ -174,7 +174,7 @@ TEST_CASE("an area light's penumbra equals the exactly visible fraction of a uni
     CHECK(penumbra > 50);
 }
 
-TEST_CASE("a glass sphere in a white furnace conserves energy with no dark ring", "[analytic]") {
+TEST_CASE("R40: a glass sphere in a white furnace conserves energy with no dark ring", "[analytic]") {
     auto spec = basic_scene(32, 32, {0, 0, -4});
     spec.settings.background = Color(1);
     spec.settings.bailout = 0;
@@ -195,7 +195,7 @@ TEST_CASE("a glass sphere in a white furnace conserves energy with no dark ring"
     }
 }
 
-TEST_CASE("scaling a scene by a power of two gives the same image bit for bit", "[analytic]") {
+TEST_CASE("R27: scaling a scene by a power of two gives the same image bit for bit", "[analytic]") {
     // robustness.md R27: no absolute epsilon anywhere, so ×2^k changes no rounding decision.
     auto make = [](double k) {
         auto spec = basic_scene(24, 20, Vec3(0, 1.5, -5) * k);

@@ -54,7 +54,7 @@ RenderOptions with_threads(int n) {
 
 }  // namespace
 
-TEST_CASE("1 and 2 threads give bit-identical images", "[determinism]") {
+TEST_CASE("R52: 1, 2 and 3 threads give bit-identical images", "[determinism]") {
     const auto spec = busy_scene();
     const auto one = render_spec(spec, with_threads(1));
     const auto two = render_spec(spec, with_threads(2));

@@ -77,7 +77,7 @@ TEST_CASE("noise is zero on the integer lattice", "[noise]") {
             for (double z : {-5.0, 0.0, 300.0}) CHECK(perlin_noise(x, y, z) == 0.0);
 }
 
-TEST_CASE("noise range, determinism and periodicity", "[noise]") {
+TEST_CASE("R37: noise range, determinism and periodicity", "[noise]") {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> coord(-1000.0, 1000.0);
     double lo = 0, hi = 0;
@@ -98,7 +98,7 @@ TEST_CASE("noise range, determinism and periodicity", "[noise]") {
     CHECK(hi > 0.7);
 }
 
-TEST_CASE("noise is continuous across every lattice plane", "[noise]") {
+TEST_CASE("R37: noise is continuous across every lattice plane", "[noise]") {
     // Lines along each axis crossing x = -10 .. 10, including the integers and -0.0 exactly.
     // |n(x+h) − n(x)| ≤ K·h, K a generous bound on the gradient (truncating instead of flooring
     // would jump by O(1) at every negative integer).
@@ -129,7 +129,7 @@ TEST_CASE("noise is continuous across every lattice plane", "[noise]") {
     }
 }
 
-TEST_CASE("noise at huge and non-finite coordinates is defined", "[noise]") {
+TEST_CASE("R37: noise at huge and non-finite coordinates is defined", "[noise]") {
     const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (double big : {1e6 + 0.37, -1e6 - 0.37, 1e9 + 0.25, -1e9 - 0.75, 3e9 + 0.5}) {

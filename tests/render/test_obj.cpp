@@ -61,7 +61,7 @@ ObjResult parse(std::string_view text) { return parse_obj("t.obj", text); }
 
 }  // namespace
 
-TEST_CASE("golden OBJ files", "[obj]") {
+TEST_CASE("R62: golden OBJ files", "[obj]") {
     const fs::path dir = fs::path(WSD_SOURCE_DIR) / "tests" / "golden" / "obj";
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir))
@@ -161,7 +161,7 @@ TEST_CASE("files mixing faces with and without vt or vn stay representable", "[o
           "t.obj:5: face mixes vertices with and without normals");
 }
 
-TEST_CASE("relative and forward indices", "[obj]") {
+TEST_CASE("R62: relative and forward indices", "[obj]") {
     const auto fwd = parse("f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n");
     REQUIRE(fwd.mesh);
     CHECK(fwd.mesh->faces.size() == 1);
@@ -245,7 +245,7 @@ TEST_CASE("files without faces, binary input and unreadable files", "[obj]") {
     CHECK(load_obj(fs::temp_directory_path().string()).error.find("not a regular file") != std::string::npos);
 }
 
-TEST_CASE("mutated OBJ text never crashes and never yields a broken mesh", "[obj]") {
+TEST_CASE("R62: mutated OBJ text never crashes and never yields a broken mesh", "[obj]") {
     const std::string base =
         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\n"
         "f 1/1/1 2/2/1 3/3/1 4/1/1\nf -1//1 -2//1 -3//1\ng x\nf 1 2 4\n";

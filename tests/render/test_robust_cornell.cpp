@@ -123,4 +123,8 @@ TEST_CASE("R29: the Cornell box translated by 10^5 stays within 1/255 of the ori
         CHECK(d.max_display <= 1);
         CHECK(d.over_5_percent == 0);
     }
+    // The move is real: translating everything but the camera changes the picture.
+    SceneSpec shifted = moved(cornell, 1, {1e5, 1e5, 1e5});
+    shifted.camera = cornell.camera;
+    CHECK(compare(base.film, render_spec(shifted).film).max_linear > 0.1);
 }

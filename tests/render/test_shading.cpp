@@ -15,7 +15,7 @@ using namespace wsd::test;
 using wsd::render::fresnel_refract;
 using wsd::render::SpecItem;
 
-TEST_CASE("Fresnel boundary values", "[shading][fresnel]") {
+TEST_CASE("R38: Fresnel boundary values", "[shading][fresnel]") {
     const Vec3 n{0, 0, 1};
     CHECK(fresnel_refract({0, 0, -1}, n, 1 / 1.5).reflectance == Approx(0.04).margin(1e-12));
     CHECK(fresnel_refract({0, 0, -1}, n, 1.5).reflectance == Approx(0.04).margin(1e-12));
@@ -49,7 +49,7 @@ TEST_CASE("Fresnel boundary values", "[shading][fresnel]") {
     }
 }
 
-TEST_CASE("Snell's law, unit length and reversibility", "[shading][fresnel]") {
+TEST_CASE("R39: Snell's law, unit length and reversibility", "[shading][fresnel]") {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-1, 1);
     const Vec3 n{0, 0, 1};
@@ -72,7 +72,7 @@ TEST_CASE("Snell's law, unit length and reversibility", "[shading][fresnel]") {
     }
 }
 
-TEST_CASE("an ambient-only material renders exactly color × ambient", "[shading]") {
+TEST_CASE("R64: an ambient-only material renders exactly color × ambient", "[shading]") {
     auto spec = basic_scene(16, 16);
     auto m = matte({0.4, 0.6, 0.8}, 0.25);
     m.diffuse = 0;
@@ -84,7 +84,7 @@ TEST_CASE("an ambient-only material renders exactly color × ambient", "[shading
     CHECK(close_to(pixel(result.film, 8, 8), expected, 1e-7));
 }
 
-TEST_CASE("Phong specular is finite for every shininess and 0 behind the mirror direction", "[shading]") {
+TEST_CASE("R58: Phong specular is finite for every shininess and 0 behind the mirror direction", "[shading]") {
     for (double shininess : {0.5, 1.7, 50.0, 1e6}) {
         auto spec = basic_scene(25, 25);  // odd: the centre pixel's ray is the optical axis
         auto m = matte({0.5, 0.5, 0.5}, 0.1);
@@ -210,7 +210,7 @@ TEST_CASE("effect analysis names the effects and the shapes that call for them",
     CHECK(std::find(result.effects.begin(), result.effects.end(), "refraction") != result.effects.end());
 }
 
-TEST_CASE("build_scene rejects cameras and lights without a frame", "[shading][validation]") {
+TEST_CASE("R45 R46 R47 R63: build_scene rejects cameras and lights without a frame", "[shading][validation]") {
     auto base = basic_scene(8, 8);
     base.shapes.push_back(sphere({0, 0, 0}, 1, add_material(base, matte({1, 1, 1}))));
     auto expect_error = [](const wsd::render::SceneSpec& spec, SpecItem item) {
@@ -261,7 +261,7 @@ TEST_CASE("build_scene rejects cameras and lights without a frame", "[shading][v
     CHECK(errors[0].message.find("/nonexistent/texture.png") != std::string::npos);
 }
 
-TEST_CASE("two facing mirrors: depth 256 terminates with linear work", "[shading]") {
+TEST_CASE("R42: two facing mirrors: depth 256 terminates with linear work", "[shading]") {
     auto spec = basic_scene(4, 4, {0, 0, -0.5}, 10);
     spec.camera.look_at = {0, 0, 1};
     spec.settings.max_depth = 256;
@@ -279,7 +279,7 @@ TEST_CASE("two facing mirrors: depth 256 terminates with linear work", "[shading
     CHECK(pixel(result.film, 1, 1).x == Approx(257 * 0.01).epsilon(1e-6));
 }
 
-TEST_CASE("a ray refracted into an absorbing half-space never comes back", "[shading]") {
+TEST_CASE("R59: a ray refracted into an absorbing half-space never comes back", "[shading]") {
     const Color bg{0.5, 0.6, 0.7};
     auto spec = basic_scene(4, 4);
     spec.settings.background = bg;

@@ -66,7 +66,7 @@ TEST_CASE("a textured sphere seen head-on shows the texture's centre, upright an
     CHECK_FALSE(white_below);
 }
 
-TEST_CASE("a bumpy mirror has no NaN and no black speckles", "[texture][bump][render]") {
+TEST_CASE("R31 R34: a bumpy mirror has no NaN and no black speckles", "[texture][bump][render]") {
     for (const double strength : {0.3, 1.0, 3.0, 20.0}) {
         auto spec = basic_scene(48, 48, {0, 0.5, -5}, 35);
         spec.settings.background = Color(0.6, 0.7, 0.8);

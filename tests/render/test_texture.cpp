@@ -140,7 +140,7 @@ TEST_CASE("bilinear lookup: centres, weights, wrap in u, clamp in v", "[texture]
     check_color(sample_image(im, {0.125, 1.125}, true), quad_color(0));
 }
 
-TEST_CASE("lookups at extreme uv stay inside the image", "[texture]") {
+TEST_CASE("R49: lookups at extreme uv stay inside the image", "[texture]") {
     std::string error;
     auto image = load_image(write_quadrant_png(), error);
     REQUIRE(image);
@@ -337,7 +337,7 @@ TEST_CASE("bump: the spec's formula in the object frame", "[texture][bump]") {
     CHECK(glm::length(bump_normal(*bump, 0.3, s, n, scaled, stats) - want) < 1e-12);
 }
 
-TEST_CASE("bump: zero strength and constant height are identities", "[texture][bump]") {
+TEST_CASE("R33: bump: zero strength and constant height are identities", "[texture][bump]") {
     RayStats stats;
     const Vec3 n = glm::normalize(Vec3(0.1, -0.7, 0.4));
     SurfaceHit s = hit_at(Vec3(0.3, 0.6, 0.9));
@@ -355,7 +355,7 @@ TEST_CASE("bump: zero strength and constant height are identities", "[texture][b
     CHECK(bump_normal(*tex, 1.0, s, n, Mat4(1.0), stats) == n);
 }
 
-TEST_CASE("bump: extreme strength, frequency and non-finite input stay unit and finite", "[texture][bump]") {
+TEST_CASE("R34: bump: extreme strength, frequency and non-finite input stay unit and finite", "[texture][bump]") {
     RayStats stats;
     const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
