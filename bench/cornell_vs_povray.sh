@@ -2,6 +2,8 @@
 # Renders the Cornell box with wsd and with POV-Ray (bench/scenes/cornell.pov, Debian's povray) in
 # one run and prints CPU-seconds, ray queries and ray queries per CPU-second for both, and ratios.
 # Usage: bench/cornell_vs_povray.sh [SIZE=1200] [THREADS=1] [--adaptive]
+# --adaptive: `adaptive 1` on POV-Ray's area light, --adaptive-lights for wsd. WSD_FLAGS adds more
+# wsd render options, e.g. WSD_FLAGS=--adaptive-aa.
 # Defaults are the seed's settings: 1200x1200, 4 camera rays per pixel, 10x10 light, depth 5.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +15,9 @@ TIMEFORMAT='%U %S'
 
 wsd_flags=(); pov_flags=()
 if [[ $adaptive == --adaptive ]]; then wsd_flags=(--adaptive-lights); pov_flags=(Declare=ADAPTIVE=1); fi
+read -r -a extra <<<"${WSD_FLAGS:-}"
+wsd_flags+=("${extra[@]}")
+echo "wsd flags: ${wsd_flags[*]:-none}; povray: ${pov_flags[*]:-full area light}; ${size}x${size}, ${threads} thread(s)"
 
 t=$( { time "$wsd" render examples/cornell.wsd -o "$out/wsd.png" --width "$size" --height "$size" \
          --threads "$threads" --quiet --stats-json "$out/wsd.json" "${wsd_flags[@]}" >/dev/null 2>&1; } 2>&1 )
