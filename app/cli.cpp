@@ -109,7 +109,7 @@ int run_cli(int argc, char** argv) {
         ->check(CLI::Range(1, 1000));
     bench->add_flag("--quick", bench_args.quick, "a small sweep at a small size (at most 32 pixels a side; for tests)");
     bench->add_option("--reference-supersamples", bench_args.reference_supersamples,
-                      "supersamples of the reference image (default 64)")
+                      "supersamples of the reference image (default 256; the reference uses another seed)")
         ->check(CLI::Range(1, max_supersamples));
     bench->add_option("--reference-light-samples", bench_args.reference_light_samples,
                       "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")

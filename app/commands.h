@@ -56,7 +56,7 @@ struct BenchArgs {
     std::string dir = ".";
     int repeat = 0;                      // 0: 3, or 1 with --quick
     bool quick = false;
-    int reference_supersamples = 0;      // 0: 64
+    int reference_supersamples = 0;      // 0: 256
     int reference_light_samples = 0;     // N: an N×N grid on every area light; 0: 16 (8 quick)
     int reference_depth = -1;            // -1: max(scene's max_depth, 10)
     int threads = 0;
