@@ -170,9 +170,13 @@ std::string svg_log_log_plot(const std::vector<PlotSeries>& series, const PlotLa
             d += (p ? " L " : "M ") + num(ax.map(clamped[s].points[p].x)) + " " + num(ay.map(clamped[s].points[p].y));
         out << "<path class=\"series\" data-series=\"" << xml_escape(clamped[s].name) << "\" d=\"" << d
             << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
+        // Each point names its value beside it, so the picture reads without the table (and
+        // without hovering, which an <img> in a README does not offer).
         for (const PlotPoint& p : clamped[s].points)
             out << "<circle cx=\"" << num(ax.map(p.x)) << "\" cy=\"" << num(ay.map(p.y)) << "\" r=\"3\" fill=\""
-                << colour << "\"><title>" << xml_escape(clamped[s].name + " " + p.label) << "</title></circle>\n";
+                << colour << "\"><title>" << xml_escape(clamped[s].name + " " + p.label) << "</title></circle>\n"
+                << "<text class=\"value\" x=\"" << num(ax.map(p.x) + 5) << "\" y=\"" << num(ay.map(p.y) - 5)
+                << "\" font-size=\"9\" fill=\"" << colour << "\">" << xml_escape(p.label) << "</text>\n";
     }
     // The Pareto front: the settings nothing beats on both time and error.
     const auto front = pareto_front(clamped);
