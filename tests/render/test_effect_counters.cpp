@@ -1,6 +1,6 @@
 // "Simulate only the effects a scene calls for" (issue 8), proved with counters: a plain diffuse
 // scene under a point light does no work of any optional kind; switching on one effect at a time
-// (mirror, glass, area light, image-free checker texture, Perlin texture, bump) makes exactly that
+// (mirror, glass, area light, checker texture, Perlin texture, bump) makes exactly that
 // kind of work non-zero, and a material with a zero weight spawns nothing.
 #include <catch2/catch.hpp>
 
@@ -42,7 +42,6 @@ TEST_CASE("counters: a plain diffuse scene does no optional work at all", "[effe
     CHECK(r.stats.texture_evals == 0);
     CHECK(r.stats.noise_evals == 0);
     CHECK(r.stats.adaptive_pixels == 0);
-    CHECK(r.stats.nonfinite_samples == 0);
 }
 
 TEST_CASE("counters: each effect switched on alone costs only its own kind of work", "[effects][stats]") {
@@ -53,7 +52,6 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
         CHECK(r.stats.shadow_rays > 8 * r.stats.camera_rays);
         CHECK(r.stats.reflection_rays + r.stats.refraction_rays + r.stats.fresnel_evals == 0);
         CHECK(r.stats.texture_evals + r.stats.noise_evals == 0);
-        CHECK(r.stats.nonfinite_samples == 0);
     }
     SECTION("a checker texture: texture lookups, no noise, no secondary rays") {
         auto spec = plain_scene();
@@ -65,7 +63,6 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
         CHECK(r.stats.texture_evals > 0);
         CHECK(r.stats.noise_evals == 0);
         CHECK(r.stats.reflection_rays + r.stats.refraction_rays == 0);
-        CHECK(r.stats.nonfinite_samples == 0);
     }
     SECTION("a Perlin texture: noise evaluations, no secondary rays") {
         auto spec = plain_scene();
@@ -73,7 +70,6 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
         const auto r = render_spec(spec);
         CHECK(r.stats.noise_evals > 0);
         CHECK(r.stats.reflection_rays + r.stats.refraction_rays + r.stats.fresnel_evals == 0);
-        CHECK(r.stats.nonfinite_samples == 0);
     }
     SECTION("a bump: noise evaluations only") {
         auto spec = plain_scene();
@@ -83,7 +79,6 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
         CHECK(r.stats.noise_evals > 0);
         CHECK(r.stats.texture_evals == 0);
         CHECK(r.stats.reflection_rays + r.stats.refraction_rays == 0);
-        CHECK(r.stats.nonfinite_samples == 0);
     }
     SECTION("a mirror: reflection rays but no Fresnel term and no refraction") {
         auto spec = plain_scene();
@@ -100,7 +95,6 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
         const auto r = render_spec(spec);
         CHECK(r.stats.refraction_rays > 0);
         CHECK(r.stats.fresnel_evals > 0);
-        CHECK(r.stats.nonfinite_samples == 0);
     }
 }
 
@@ -112,11 +106,14 @@ TEST_CASE("counters: zero weights spawn no rays even where the material kind all
     CHECK(shiny.stats.reflection_rays == 0);
     CHECK(shiny.stats.fresnel_evals == 0);
 
-    // A black mirror still reflects (its weight is `reflection`, not the colour); a zero-weight
-    // reflection next to a real mirror on another object spawns rays only from the real one.
-    auto two = plain_scene();
-    two.materials[1].reflection = 0.3;  // the floor mirrors, the sphere does not
-    const auto floor_only = render_spec(two);
+    // Only the surfaces whose material mirrors spawn reflected rays: with the floor mirroring and
+    // the sphere at reflection 0 there are strictly fewer than with both mirroring.
+    auto floor_mirror = plain_scene();
+    floor_mirror.materials[1].reflection = 0.3;
+    auto both_mirror = floor_mirror;
+    both_mirror.materials[0].reflection = 0.3;
+    const auto floor_only = render_spec(floor_mirror);
+    const auto both = render_spec(both_mirror);
     CHECK(floor_only.stats.reflection_rays > 0);
-    CHECK(floor_only.stats.reflection_rays < floor_only.stats.camera_rays);
+    CHECK(floor_only.stats.reflection_rays < both.stats.reflection_rays);
 }
