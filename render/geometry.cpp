@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "render/geometry_impl.h"
-#include "render/shaft.h"
+#include "render/prim_test.h"
 
 namespace wsd::render {
 
@@ -18,21 +18,7 @@ uint32_t Geometry::Impl::shape_of(uint32_t prim) const {
 
 namespace {
 
-using Impl = Geometry::Impl;
-
-struct Counters {
-    uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0,
-             planes = 0;
-    void flush(RayStats& s) const {
-        s.box_tests += boxes;
-        s.triangle_tests += tri_tests;
-        s.triangle_hits += tri_hits;
-        s.sphere_tests += sph_tests;
-        s.sphere_hits += sph_hits;
-        s.shape_box_tests += shape_boxes;
-        s.plane_tests += planes;
-    }
-};
+using namespace detail;
 
 // The running closest hit. Primitive tests accept t < limit; after a hit the limit becomes the
 // next double above it, so that an exact tie can still be resolved by primitive id.
@@ -51,86 +37,6 @@ struct Best {
         }
     }
 };
-
-bool ray_is_valid(const Ray& r, double tmax) {
-    return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) &&
-           !std::isnan(tmax);
-}
-
-inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const Vec3& o) {
-    Vec3 c = abs3(s.center);
-    double m = std::max({c.x, c.y, c.z}) + s.radius;
-    return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
-}
-
-// One primitive test; fills t, slot-specific parameters and the canonical id on a hit.
-[[gnu::always_inline]] inline bool test_entry(const Impl& g, const RayPre& r, uint32_t e, double limit, Counters& c,
-                       double& t, uint32_t& prim, double& b1, double& b2) {
-    const uint32_t slot = e & kSlotMask;
-    switch ((e >> kKindShift) & 3u) {
-    case 0: {
-        const TriPrim& tri = g.tris[slot];
-        ++c.tri_tests;
-        if (!intersect_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit,
-                                t, b1, b2))
-            return false;
-        ++c.tri_hits;
-        prim = tri.prim;
-        return true;
-    }
-    case 1: {
-        const SpherePrim& s = g.spheres[slot];
-        ++c.sph_tests;
-        bool hit;
-        if (s.xform == kNoTransform) {
-            hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
-        } else {
-            const Transform& x = g.xforms[s.xform];
-            Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
-            double a = glm::dot(d, d);
-            hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius,
-                                   sphere_origin_error(x, s, r.o), limit, t);
-        }
-        if (!hit) return false;
-        ++c.sph_hits;
-        prim = s.prim;
-        b1 = b2 = 0;
-        return true;
-    }
-    default: {
-        const BoxPrim& bx = g.boxes[slot];
-        ++c.shape_boxes;
-        int face = 0;
-        bool hit;
-        if (bx.xform == kNoTransform) {
-            // The identity's own error bound (γ₃|o|, as a transform would give), so that a
-            // scene scaled by 2^k decides edge cases exactly as the unscaled one.
-            hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit,
-                                      t, face);
-        } else {
-            const Transform& x = g.xforms[bx.xform];
-            hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
-                                      x.inv_point_error(r.o) + bx.band, limit, t, face);
-        }
-        if (!hit) return false;
-        prim = bx.prim;
-        b1 = face;
-        b2 = 0;
-        return true;
-    }
-    }
-}
-
-// kFilter: 0 every primitive, 1 opaque only, 2 transmissive only.
-template <int kFilter>
-inline bool passes(uint32_t e) {
-    if constexpr (kFilter == 0) {
-        return true;
-    } else {
-        bool trans = (e & kTransmissiveBit) != 0;
-        return trans == (kFilter == 2);
-    }
-}
 
 template <int kFilter>
 void test_planes(const Impl& g, const Ray& ray, Best& best, Counters& c) {
@@ -337,75 +243,6 @@ bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter 
     case RayFilter::All: hit = any_hit<0>(g, ray, r, tmax, c); break;
     case RayFilter::OpaqueOnly: hit = any_hit<1>(g, ray, r, tmax, c); break;
     case RayFilter::TransmissiveOnly: hit = any_hit<2>(g, ray, r, tmax, c); break;
-    }
-    c.flush(stats);
-    return hit;
-}
-
-bool Geometry::gather_shaft(const Shaft& shaft, ShaftCandidates& out, RayStats& stats) const {
-    const Impl& g = *impl_;
-    out.count = 0;
-    if (g.nodes.empty()) return false;
-    uint32_t stack[4 * kMaxBvhDepth + 4];  // each level pushes at most four children
-    int sp = 0;
-    uint32_t ni = 0;
-    uint64_t boxes = 0;
-    bool fits = true;
-    for (;;) {
-        const Bvh4Node& node = g.nodes[ni];
-        for (int i = 0; i < 4 && fits; ++i) {
-            const float lo[3] = {node.lo[0][i], node.lo[1][i], node.lo[2][i]};
-            const float hi[3] = {node.hi[0][i], node.hi[1][i], node.hi[2][i]};
-            if (!(lo[0] <= hi[0])) continue;  // an unused lane
-            ++boxes;
-            if (shaft.outside(lo, hi)) continue;
-            if (node.count[i] == 0) {
-                stack[sp++] = node.first[i];
-                continue;
-            }
-            for (uint32_t k = node.first[i]; k < node.first[i] + node.count[i]; ++k) {
-                const uint32_t e = g.order[k];
-                if (g.has_transmissive && !passes<1>(e)) continue;
-                if (out.count == ShaftCandidates::kMax) {
-                    fits = false;
-                    break;
-                }
-                out.entries[out.count++] = e;
-            }
-        }
-        if (!fits || sp == 0) break;
-        ni = stack[--sp];
-    }
-    stats.box_tests += boxes;
-    return fits;
-}
-
-bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
-                              RayStats& stats) const {
-    if (!ray_is_valid(ray, tmax)) {
-        ++stats.rejected_rays;
-        return false;
-    }
-    if (!(tmax > 0)) return false;
-    const Impl& g = *impl_;
-    Counters c;
-    bool hit = false;
-    for (const PlanePrim& p : g.planes) {
-        if (g.has_transmissive && p.transmissive != 0) continue;
-        ++c.planes;
-        double t;
-        if (intersect_plane(ray.o, ray.d, p, tmax, t)) {
-            hit = true;
-            break;
-        }
-    }
-    if (!hit && candidates.count > 0) {
-        const RayPre r(ray, false);
-        for (int k = 0; k < candidates.count && !hit; ++k) {
-            double t, b1, b2;
-            uint32_t prim;
-            hit = test_entry(g, r, candidates.entries[k], tmax, c, t, prim, b1, b2);
-        }
     }
     c.flush(stats);
     return hit;

@@ -1,0 +1,110 @@
+// The primitive tests that every traversal shares (closest-hit, any-hit and the shaft-culled
+// shadow queries): one encoded entry of Impl::order against a ray, with per-query counters.
+// Internal to render/ like geometry_impl.h.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "render/geometry_impl.h"
+
+namespace wsd::render::detail {
+
+using Impl = Geometry::Impl;
+
+struct Counters {
+    uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0,
+             planes = 0;
+    void flush(RayStats& s) const {
+        s.box_tests += boxes;
+        s.triangle_tests += tri_tests;
+        s.triangle_hits += tri_hits;
+        s.sphere_tests += sph_tests;
+        s.sphere_hits += sph_hits;
+        s.shape_box_tests += shape_boxes;
+        s.plane_tests += planes;
+    }
+};
+
+inline bool ray_is_valid(const Ray& r, double tmax) {
+    return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) &&
+           !std::isnan(tmax);
+}
+
+inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const Vec3& o) {
+    Vec3 c = abs3(s.center);
+    double m = std::max({c.x, c.y, c.z}) + s.radius;
+    return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
+}
+
+// One primitive test; fills t, slot-specific parameters and the canonical id on a hit.
+[[gnu::always_inline]] inline bool test_entry(const Impl& g, const RayPre& r, uint32_t e, double limit,
+                                              Counters& c, double& t, uint32_t& prim, double& b1,
+                                              double& b2) {
+    const uint32_t slot = e & kSlotMask;
+    switch ((e >> kKindShift) & 3u) {
+    case 0: {
+        const TriPrim& tri = g.tris[slot];
+        ++c.tri_tests;
+        if (!intersect_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit,
+                                t, b1, b2))
+            return false;
+        ++c.tri_hits;
+        prim = tri.prim;
+        return true;
+    }
+    case 1: {
+        const SpherePrim& s = g.spheres[slot];
+        ++c.sph_tests;
+        bool hit;
+        if (s.xform == kNoTransform) {
+            hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
+        } else {
+            const Transform& x = g.xforms[s.xform];
+            Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
+            double a = glm::dot(d, d);
+            hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius,
+                                   sphere_origin_error(x, s, r.o), limit, t);
+        }
+        if (!hit) return false;
+        ++c.sph_hits;
+        prim = s.prim;
+        b1 = b2 = 0;
+        return true;
+    }
+    default: {
+        const BoxPrim& bx = g.boxes[slot];
+        ++c.shape_boxes;
+        int face = 0;
+        bool hit;
+        if (bx.xform == kNoTransform) {
+            // The identity's own error bound (γ₃|o|, as a transform would give), so that a
+            // scene scaled by 2^k decides edge cases exactly as the unscaled one.
+            hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit,
+                                      t, face);
+        } else {
+            const Transform& x = g.xforms[bx.xform];
+            hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
+                                      x.inv_point_error(r.o) + bx.band, limit, t, face);
+        }
+        if (!hit) return false;
+        prim = bx.prim;
+        b1 = face;
+        b2 = 0;
+        return true;
+    }
+    }
+}
+
+// kFilter: 0 every primitive, 1 opaque only, 2 transmissive only.
+template <int kFilter>
+inline bool passes(uint32_t e) {
+    if constexpr (kFilter == 0) {
+        return true;
+    } else {
+        bool trans = (e & kTransmissiveBit) != 0;
+        return trans == (kFilter == 2);
+    }
+}
+
+}  // namespace wsd::render::detail
