@@ -67,6 +67,7 @@ std::string stats_table(const RenderReport& r) {
                                           : std::string("-")) +
                                   " per pixel)");
     line(out, "Shadow rays:", std::to_string(s.shadow_rays));
+    line(out, "  answered by shaft alone:", std::to_string(s.shaft_answered_rays));
     line(out, "Reflected rays:", std::to_string(s.reflection_rays));
     line(out, "Refracted rays:", std::to_string(s.refraction_rays));
     line(out, "Ray queries (total):", std::to_string(s.ray_queries()));
@@ -115,6 +116,7 @@ std::string stats_json(const RenderReport& r) {
     u("supersamples", static_cast<uint64_t>(r.supersamples));
     u("camera_rays", s.camera_rays);
     u("shadow_rays", s.shadow_rays);
+    u("shaft_answered_rays", s.shaft_answered_rays);
     u("reflection_rays", s.reflection_rays);
     u("refraction_rays", s.refraction_rays);
     u("ray_queries", s.ray_queries());

@@ -38,6 +38,7 @@ struct SurfaceHit {
     bool planar = false;    // true for planes
     Vec3 p_object;          // the point in the object's own frame (sphere: relative to its centre)
     uint32_t shape = 0;     // index into SceneSpec::shapes
+    uint32_t prim = 0;      // the geometry-global primitive hit
     uint32_t material = 0;  // index into SceneSpec::materials
 };
 
@@ -52,6 +53,15 @@ struct ShaftCandidates {
     static constexpr int kMax = 32;  // more than this: not worth it, trace each ray in full
     uint32_t entries[kMax];
     int count = 0;
+    bool transmissive = false;  // some transmissive primitive may meet the shaft
+};
+
+// The surface the shadow rays of a shaft leave: its primitive and geometric normal, and which
+// side of it the rays start on (+1 along ng, −1 against it, 0 when they do not share one origin).
+struct ShaftSelf {
+    uint32_t prim = 0xffffffffu;
+    Vec3 ng{0};
+    int ng_side = 0;
 };
 
 class Geometry {
@@ -69,9 +79,12 @@ public:
                   RayFilter filter = RayFilter::OpaqueOnly) const;
     SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
-    // Collects the opaque primitives whose BVH leaves meet `shaft`. False when there is no BVH or
-    // more than ShaftCandidates::kMax of them: then use occluded() for each ray.
-    bool gather_shaft(const Shaft& shaft, ShaftCandidates& out, RayStats& stats) const;
+    // Collects the opaque primitives (planes included) that shadow rays inside `shaft` may meet:
+    // those in BVH leaves that meet it, less those a finer test clears (Shaft::outside_*,
+    // clear_of_*); `self` is the surface the rays leave. False when there is no BVH or more than
+    // ShaftCandidates::kMax of them: then use occluded() for each ray.
+    bool gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
+                      RayStats& stats) const;
     // occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the shaft the
     // candidates were gathered for: the same answer, testing only those primitives.
     bool occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,

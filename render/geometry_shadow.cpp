@@ -1,6 +1,7 @@
 // Shadow queries against the primitives a shaft gathered (shaft.h): one BVH walk per shading
 // point and area light collects the few opaque primitives its shadow rays can meet, and each of
 // those rays then tests only them.
+#include <cmath>
 #include <cstdint>
 
 #include "render/geometry_impl.h"
@@ -11,10 +12,66 @@ namespace wsd::render {
 
 using namespace detail;
 
-bool Geometry::gather_shaft(const Shaft& shaft, ShaftCandidates& out, RayStats& stats) const {
+namespace {
+
+// Entries of ShaftCandidates with this kind are planes (the BVH's entries use kinds 0–2).
+constexpr uint32_t kPlaneKind = 3;
+
+// The origin's side of the plane with normal n, when the shading point lies on it and the
+// shadow rays start on the side of `self` (ng_side·ng); 0 when n is not clearly ±ng.
+int self_side(const Vec3& n, const ShaftSelf& self) {
+    const double d = glm::dot(n, self.ng);
+    const double len = glm::length(n);
+    if (!(std::abs(d) > 0.5 * len)) return 0;
+    return d > 0 ? self.ng_side : -self.ng_side;
+}
+
+// True when no shadow ray of the shaft can meet this opaque primitive, by a test finer than its
+// leaf's box: the primitive lies outside one of the shaft's planes, or the rays' origin and the
+// whole light lie strictly on one side of the triangle's plane.
+bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, uint32_t e) {
+    const uint32_t slot = e & kSlotMask;
+    switch ((e >> kKindShift) & 3u) {
+    case 0: {
+        const TriPrim& t = g.tris[slot];
+        const Vec3f &a = g.verts[t.v[0]], &b = g.verts[t.v[1]], &c = g.verts[t.v[2]];
+        if (shaft.outside_triangle(a, b, c)) return true;
+        const int side = (t.prim == self.prim && self.ng_side != 0)
+                             ? self_side(glm::cross(Vec3(b) - Vec3(a), Vec3(c) - Vec3(a)), self)
+                             : 0;
+        return shaft.clear_of_triangle(a, b, c, side);
+    }
+    case 1: {
+        const SpherePrim& sp = g.spheres[slot];
+        return sp.xform == kNoTransform && shaft.outside_ball(sp.center, sp.radius);
+    }
+    default: return false;
+    }
+}
+
+}  // namespace
+
+bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
+                            RayStats& stats) const {
     const Impl& g = *impl_;
     out.count = 0;
+    out.transmissive = false;
     if (g.nodes.empty()) return false;
+    auto add = [&](uint32_t e) {
+        if (out.count == ShaftCandidates::kMax) return false;
+        out.entries[out.count++] = e;
+        return true;
+    };
+    for (size_t i = 0; i < g.planes.size(); ++i) {
+        const PlanePrim& p = g.planes[i];
+        if (g.has_transmissive && p.transmissive != 0) {
+            out.transmissive = true;
+            continue;
+        }
+        const int side = (p.prim == self.prim && self.ng_side != 0) ? self_side(p.n, self) : 0;
+        if (shaft.clear_of_plane(p.n, p.c, side)) continue;
+        if (!add((kPlaneKind << kKindShift) | static_cast<uint32_t>(i))) return false;
+    }
     uint32_t stack[4 * kMaxBvhDepth + 4];  // each level pushes at most four children
     int sp = 0;
     uint32_t ni = 0;
@@ -34,12 +91,17 @@ bool Geometry::gather_shaft(const Shaft& shaft, ShaftCandidates& out, RayStats& 
             }
             for (uint32_t k = node.first[i]; k < node.first[i] + node.count[i]; ++k) {
                 const uint32_t e = g.order[k];
-                if (g.has_transmissive && !passes<1>(e)) continue;
-                if (out.count == ShaftCandidates::kMax) {
+                if (g.has_transmissive && !passes<1>(e)) {
+                    // Shadow rays walk the transmissive primitives separately; note that some
+                    // may lie in the shaft (its leaf box meets it).
+                    out.transmissive = true;
+                    continue;
+                }
+                if (culled(g, shaft, self, e)) continue;
+                if (!add(e)) {
                     fits = false;
                     break;
                 }
-                out.entries[out.count++] = e;
             }
         }
         if (!fits || sp == 0) break;
@@ -59,21 +121,18 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     const Impl& g = *impl_;
     Counters c;
     bool hit = false;
-    for (const PlanePrim& p : g.planes) {
-        if (g.has_transmissive && p.transmissive != 0) continue;
-        ++c.planes;
-        double t;
-        if (intersect_plane(ray.o, ray.d, p, tmax, t)) {
-            hit = true;
-            break;
-        }
-    }
-    if (!hit && candidates.count > 0) {
+    if (candidates.count > 0) {
         const RayPre r(ray, false);
         for (int k = 0; k < candidates.count && !hit; ++k) {
+            const uint32_t e = candidates.entries[k];
             double t, b1, b2;
             uint32_t prim;
-            hit = test_entry(g, r, candidates.entries[k], tmax, c, t, prim, b1, b2);
+            if ((e >> kKindShift) == kPlaneKind) {
+                ++c.planes;
+                hit = intersect_plane(ray.o, ray.d, g.planes[e & kSlotMask], tmax, t);
+            } else {
+                hit = test_entry(g, r, e, tmax, c, t, prim, b1, b2);
+            }
         }
     }
     c.flush(stats);

@@ -119,6 +119,7 @@ SurfaceHit Geometry::surface(const Ray& ray, const HitRecord& hit) const {
     const uint32_t shape = g.shape_of(hit.prim);
     const ShapeInfo& info = g.shapes[shape];
     s.shape = shape;
+    s.prim = hit.prim;
     s.material = info.material;
     switch (info.kind) {
     case ShapeKind::Triangle:

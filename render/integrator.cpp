@@ -74,6 +74,7 @@ struct Path {
 // Per-hit constants of the light loop, hoisted out of the sample loop.
 struct Shading {
     Vec3 p, ng, N, V;
+    uint32_t prim;     // the primitive the point lies on
     Vec3 ng_v;         // the geometric normal on the viewer's side
     bool opaque;       // no transmission: light from behind the surface cannot reach the viewer's side
     double nv;
@@ -239,6 +240,7 @@ private:
         Shading sh;
         sh.p = s.p;
         sh.ng = s.ng;
+        sh.prim = s.prim;
         sh.ng_v = glm::dot(V, s.ng) > 0 ? s.ng : -s.ng;
         sh.opaque = !(t > 0);
         sh.N = N;
@@ -369,11 +371,21 @@ private:
     // there are few of them: one BVH walk instead of one a sample.
     bool gather_shaft(const Shading& sh, const Light& light) {
         const double radius = std::max(glm::length(sh.o_front - sh.p), glm::length(sh.o_back - sh.p));
+        const Vec3 u = light.du * double(light.nu), v = light.dv * double(light.nv);
         Shaft shaft;
-        if (!shaft.init(sh.p, radius, light.corner, light.du * double(light.nu),
-                        light.dv * double(light.nv)))
-            return false;
-        return geom_.gather_shaft(shaft, shaft_, stats_);
+        if (!shaft.init(sh.p, radius, light.corner, u, v)) return false;
+        ShaftSelf self;
+        self.prim = sh.prim;
+        self.ng = sh.ng;
+        // When the whole light lies clearly on one side of the surface, every shadow ray starts
+        // at the same origin (visibility() picks it by the same sign), and the shaft can clear
+        // primitives by which side of them that origin and the light lie on.
+        const int side = surface_side(sh.p, sh.ng, light.corner, u, v);
+        if (side != 0) {
+            shaft.set_origin(side > 0 ? sh.o_front : sh.o_back);
+            self.ng_side = side;
+        }
+        return geom_.gather_shaft(shaft, self, shaft_, stats_);
     }
 
     // The shadow ray from the spawn origin on the light's side to P (d = P − origin, tmax = 1).
@@ -381,10 +393,19 @@ private:
         const Vec3 origin = glm::dot(to_light, sh.ng) < 0 ? sh.o_back : sh.o_front;
         const Ray ray{origin, P - origin};
         ++stats_.shadow_rays;
-        const bool blocked = use_shaft_ ? geom_.occluded_among(shaft_, ray, 1.0, stats_)
-                                        : geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly);
+        bool blocked;
+        if (!use_shaft_) {
+            blocked = geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly);
+        } else if (shaft_.count == 0) {
+            ++stats_.shaft_answered_rays;  // nothing opaque can be met: no test needed
+            blocked = false;
+        } else {
+            blocked = geom_.occluded_among(shaft_, ray, 1.0, stats_);
+        }
         if (blocked) return Vis(0);
         if constexpr (kTransmissive) {
+            // Nor transmissive: the light arrives unfiltered (transmittance() would find no hit).
+            if (use_shaft_ && !shaft_.transmissive) return Color(1);
             if (!scene_.may_cross_transmissive(origin, P)) return Color(1);
             return transmittance(origin, P);
         } else {

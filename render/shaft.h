@@ -43,7 +43,17 @@ public:
         }
         normal_[4] = -m;  // the cap: points past the light's plane are outside
         offset_[4] = glm::dot(-m, centre);
+        for (int k = 0; k < 4; ++k) corner_[k] = q[k];
+        light_scale_ = max_abs(corner) + max_abs(u) + max_abs(v);
+        has_origin_ = false;
         return true;
+    }
+
+    // Every shadow ray of this shaft starts exactly at `origin` (the light lies wholly on one
+    // side of the surface): enables the plane-side tests below.
+    void set_origin(const Vec3& origin) {
+        origin_ = origin;
+        has_origin_ = true;
     }
 
     // True when no point of the float box [lo, hi] is in the shaft.
@@ -62,13 +72,114 @@ public:
         return false;
     }
 
+    // True when all three vertices lie outside one of the shaft's planes.
+    bool outside_triangle(const Vec3f& a, const Vec3f& b, const Vec3f& c) const {
+        const double slack = margin_ + 1e-9 * std::max({max_abs(Vec3(a)), max_abs(Vec3(b)), max_abs(Vec3(c))});
+        for (int k = 0; k < 5; ++k) {
+            const double lim = offset_[k] - slack;
+            if (glm::dot(normal_[k], Vec3(a)) < lim && glm::dot(normal_[k], Vec3(b)) < lim &&
+                glm::dot(normal_[k], Vec3(c)) < lim)
+                return true;
+        }
+        return false;
+    }
+
+    // True when the ball (centre, radius) lies outside one of the shaft's planes.
+    bool outside_ball(const Vec3& centre, double radius) const {
+        const double slack = margin_ + 1e-9 * (max_abs(centre) + radius) + radius;
+        for (int k = 0; k < 5; ++k)
+            if (glm::dot(normal_[k], centre) - offset_[k] < -slack) return true;
+        return false;
+    }
+
+    // With an origin set: true when the origin and the whole light lie strictly on one side of
+    // the plane through the triangle a, b, c, so that no shadow ray can meet it (its line meets
+    // the plane before its start or beyond the light, and the triangle test's error bound δt
+    // rejects a root at or behind the origin). `origin_side` is the origin's side of the plane
+    // when it is known by construction (+1 along cross(b − a, c − a), −1 against it; the
+    // triangle the shading point lies on), else 0: then it must be certain from the arithmetic.
+    bool clear_of_triangle(const Vec3f& a, const Vec3f& b, const Vec3f& c, int origin_side) const {
+        if (!has_origin_) return false;
+        // A plane perpendicular to an axis: the origin's side is an exact comparison.
+        for (int ax = 0; ax < 3; ++ax) {
+            if (a[ax] != b[ax] || a[ax] != c[ax]) continue;
+            const double k = a[ax];
+            const int side = origin_[ax] > k ? 1 : (origin_[ax] < k ? -1 : 0);
+            if (side == 0) return false;
+            const double slack = 1e-9 * (light_scale_ + std::abs(k));
+            for (const Vec3& q : corner_)
+                if (!(side * (q[ax] - k) > slack)) return false;
+            return true;
+        }
+        const Vec3 e1 = Vec3(b) - Vec3(a), e2 = Vec3(c) - Vec3(a);
+        const Vec3 n = glm::cross(e1, e2);
+        const double n_scale = l1(e1) * l1(e2);  // bounds every |n_i| and its rounding
+        if (!(n_scale > 0) || !std::isfinite(n_scale)) return false;
+        // Rounding of n, of x − a and of the dot product is a few ULPs of n_scale·(|x| + |a|);
+        // the bound below is a thousand times that.
+        auto side_of = [&](const Vec3& x, double extra) {
+            const double s = glm::dot(n, x - Vec3(a));
+            const double err = 1e-12 * n_scale * (l1(x) + l1(Vec3(a))) + extra;
+            return s > err ? 1 : (s < -err ? -1 : 0);
+        };
+        int side = origin_side;
+        if (side == 0) side = side_of(origin_, 0);
+        if (side == 0) return false;
+        // Light samples are rounded sums of the corner and edges: allow 1e-9 of their scale.
+        const double light_slack = 1e-9 * n_scale * light_scale_;
+        for (const Vec3& q : corner_)
+            if (side_of(q, light_slack) != side) return false;
+        return true;
+    }
+
+    // With an origin set: the same for the plane n·x = c (n unit), the origin's side known
+    // (origin_side ≠ 0) or certain.
+    bool clear_of_plane(const Vec3& n, double c, int origin_side) const {
+        if (!has_origin_) return false;
+        auto side_of = [&](const Vec3& x, double extra) {
+            const double s = glm::dot(n, x) - c;
+            const double err = 1e-12 * (l1(x) + std::abs(c)) + extra;
+            return s > err ? 1 : (s < -err ? -1 : 0);
+        };
+        int side = origin_side;
+        if (side == 0) side = side_of(origin_, 0);
+        if (side == 0) return false;
+        const double light_slack = 1e-9 * light_scale_;
+        for (const Vec3& q : corner_)
+            if (side_of(q, light_slack) != side) return false;
+        return true;
+    }
+
 private:
     static double max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+    static double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
 
     Vec3 normal_[5];     // inward unit normals: inside means dot(n, x) ≥ offset
     double offset_[5] = {};
     double scale_ = 0;
     double margin_ = 0;  // the apex ball's radius plus the rounding margin
+    Vec3 corner_[4];     // the light's parallelogram
+    double light_scale_ = 0;
+    Vec3 origin_{0};
+    bool has_origin_ = false;
 };
+
+// The side of the surface through p with unit normal ng on which the whole parallelogram
+// corner + a·u + b·v lies: +1 along ng, −1 against it, 0 when it is not clearly on one side.
+// A shadow ray picks its origin by the sign of (P − p)·ng, so with ±1 every ray of the light
+// starts at the same origin.
+inline int surface_side(const Vec3& p, const Vec3& ng, const Vec3& corner, const Vec3& u, const Vec3& v) {
+    auto max_abs = [](const Vec3& x) { return std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)}); };
+    const double slack = 1e-9 * (max_abs(p) + max_abs(corner) + max_abs(u) + max_abs(v));
+    const Vec3 q[4] = {corner, corner + u, corner + v, corner + u + v};
+    int side = 0;
+    for (const Vec3& c : q) {
+        const double d = glm::dot(c - p, ng);
+        const int s = d > slack ? 1 : (d < -slack ? -1 : 0);
+        if (s == 0 || (side != 0 && s != side)) return 0;
+        side = s;
+    }
+    return side;
+}
 
 }  // namespace wsd::render

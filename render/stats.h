@@ -9,6 +9,7 @@ namespace wsd::render {
 struct RayStats {
     uint64_t camera_rays = 0;
     uint64_t shadow_rays = 0;
+    uint64_t shaft_answered_rays = 0;  // shadow rays whose shaft held nothing to test (no traversal)
     uint64_t reflection_rays = 0;
     uint64_t refraction_rays = 0;
     uint64_t triangle_tests = 0, triangle_hits = 0;
@@ -25,6 +26,7 @@ struct RayStats {
 
     RayStats& operator+=(const RayStats& o) {
         camera_rays += o.camera_rays; shadow_rays += o.shadow_rays;
+        shaft_answered_rays += o.shaft_answered_rays;
         reflection_rays += o.reflection_rays; refraction_rays += o.refraction_rays;
         triangle_tests += o.triangle_tests; triangle_hits += o.triangle_hits;
         sphere_tests += o.sphere_tests; sphere_hits += o.sphere_hits;
