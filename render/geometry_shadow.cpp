@@ -3,6 +3,7 @@
 // those rays then tests only them.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "render/geometry_impl.h"
 #include "render/prim_test.h"
@@ -26,20 +27,13 @@ int self_side(const Vec3& n, const ShaftSelf& self) {
     return d > 0 ? self.ng_side : -self.ng_side;
 }
 
-// True when no shadow ray of the shaft can meet this opaque primitive, by a test finer than its
-// leaf's box: the primitive lies outside one of the shaft's planes, or the rays' origin and the
-// whole light lie strictly on one side of the triangle's plane.
-bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, uint32_t e) {
+// True when the primitive lies outside one of the shaft's planes (finer than its leaf's box).
+bool outside_shaft(const Geometry::Impl& g, const Shaft& shaft, uint32_t e) {
     const uint32_t slot = e & kSlotMask;
     switch ((e >> kKindShift) & 3u) {
     case 0: {
         const TriPrim& t = g.tris[slot];
-        const Vec3f &a = g.verts[t.v[0]], &b = g.verts[t.v[1]], &c = g.verts[t.v[2]];
-        if (shaft.outside_triangle(a, b, c)) return true;
-        const int side = (t.prim == self.prim && self.ng_side != 0)
-                             ? self_side(glm::cross(Vec3(b) - Vec3(a), Vec3(c) - Vec3(a)), self)
-                             : 0;
-        return shaft.clear_of_triangle(a, b, c, side);
+        return shaft.outside_triangle(g.verts[t.v[0]], g.verts[t.v[1]], g.verts[t.v[2]]);
     }
     case 1: {
         const SpherePrim& sp = g.spheres[slot];
@@ -47,6 +41,19 @@ bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, 
     }
     default: return false;
     }
+}
+
+// True when no shadow ray of the shaft can meet this opaque primitive: it lies outside the
+// shaft, or the rays' origin and the whole light lie strictly on one side of its plane.
+bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, uint32_t e) {
+    if (outside_shaft(g, shaft, e)) return true;
+    if (((e >> kKindShift) & 3u) != 0) return false;
+    const TriPrim& t = g.tris[e & kSlotMask];
+    const Vec3f &a = g.verts[t.v[0]], &b = g.verts[t.v[1]], &c = g.verts[t.v[2]];
+    const int side = (t.prim == self.prim && self.ng_side != 0)
+                         ? self_side(glm::cross(Vec3(b) - Vec3(a), Vec3(c) - Vec3(a)), self)
+                         : 0;
+    return shaft.clear_of_triangle(a, b, c, side);
 }
 
 }  // namespace
@@ -92,9 +99,10 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
             for (uint32_t k = node.first[i]; k < node.first[i] + node.count[i]; ++k) {
                 const uint32_t e = g.order[k];
                 if (g.has_transmissive && !passes<1>(e)) {
-                    // Shadow rays walk the transmissive primitives separately; note that some
-                    // may lie in the shaft (its leaf box meets it).
-                    out.transmissive = true;
+                    // Shadow rays walk the transmissive primitives separately, from points
+                    // along the ray: note whether one may lie in the shaft (side tests assume
+                    // the rays' own origin, so only the shaft's planes may clear it).
+                    if (!out.transmissive && !outside_shaft(g, shaft, e)) out.transmissive = true;
                     continue;
                 }
                 if (culled(g, shaft, self, e)) continue;
@@ -121,18 +129,27 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     const Impl& g = *impl_;
     Counters c;
     bool hit = false;
-    if (candidates.count > 0) {
-        const RayPre r(ray, false);
-        for (int k = 0; k < candidates.count && !hit; ++k) {
-            const uint32_t e = candidates.entries[k];
-            double t, b1, b2;
-            uint32_t prim;
-            if ((e >> kKindShift) == kPlaneKind) {
-                ++c.planes;
-                hit = intersect_plane(ray.o, ray.d, g.planes[e & kSlotMask], tmax, t);
-            } else {
-                hit = test_entry(g, r, e, tmax, c, t, prim, b1, b2);
-            }
+    // The triangle test's per-ray setup (the shear, three divisions) only when a triangle or
+    // box is among the candidates; spheres in world space need only d·d.
+    std::optional<RayPre> pre;
+    const double a = glm::dot(ray.d, ray.d), inv_a = 1.0 / a;
+    for (int k = 0; k < candidates.count && !hit; ++k) {
+        const uint32_t e = candidates.entries[k];
+        const uint32_t kind = e >> kKindShift;
+        double t, b1, b2;
+        uint32_t prim;
+        if (kind == kPlaneKind) {
+            ++c.planes;
+            hit = intersect_plane(ray.o, ray.d, g.planes[e & kSlotMask], tmax, t);
+        } else if ((kind & 3u) == uint32_t(PrimKind::Sphere) &&
+                   g.spheres[e & kSlotMask].xform == kNoTransform) {
+            const SpherePrim& sp = g.spheres[e & kSlotMask];
+            ++c.sph_tests;
+            hit = intersect_sphere(ray.o, ray.d, a, inv_a, sp.center, sp.radius, Vec3(0), tmax, t);
+            c.sph_hits += hit ? 1 : 0;
+        } else {
+            if (!pre) pre.emplace(ray, false);
+            hit = test_entry(g, *pre, e, tmax, c, t, prim, b1, b2);
         }
     }
     c.flush(stats);
