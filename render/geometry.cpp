@@ -20,24 +20,6 @@ namespace {
 
 using namespace detail;
 
-// The running closest hit. Primitive tests accept t < limit; after a hit the limit becomes the
-// next double above it, so that an exact tie can still be resolved by primitive id.
-struct Best {
-    double limit;
-    double t = std::numeric_limits<double>::infinity();
-    uint32_t prim = 0xffffffffu, slot = 0;
-    double b1 = 0, b2 = 0;
-    bool hit = false;
-
-    void offer(double t_new, uint32_t prim_new, uint32_t slot_new, double b1_new, double b2_new) {
-        if (t_new < t || prim_new < prim) {
-            t = t_new, prim = prim_new, slot = slot_new, b1 = b1_new, b2 = b2_new;
-            hit = true;
-            limit = next_float_up(t);
-        }
-    }
-};
-
 template <int kFilter>
 void test_planes(const Impl& g, const Ray& ray, Best& best, Counters& c) {
     for (size_t i = 0; i < g.planes.size(); ++i) {

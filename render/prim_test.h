@@ -26,6 +26,24 @@ struct Counters {
     }
 };
 
+// The running closest hit. Primitive tests accept t < limit; after a hit the limit becomes the
+// next double above it, so that an exact tie can still be resolved by primitive id.
+struct Best {
+    double limit;
+    double t = std::numeric_limits<double>::infinity();
+    uint32_t prim = 0xffffffffu, slot = 0;
+    double b1 = 0, b2 = 0;
+    bool hit = false;
+
+    void offer(double t_new, uint32_t prim_new, uint32_t slot_new, double b1_new, double b2_new) {
+        if (t_new < t || prim_new < prim) {
+            t = t_new, prim = prim_new, slot = slot_new, b1 = b1_new, b2 = b2_new;
+            hit = true;
+            limit = next_float_up(t);
+        }
+    }
+};
+
 inline bool ray_is_valid(const Ray& r, double tmax) {
     return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) &&
            !std::isnan(tmax);
