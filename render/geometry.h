@@ -54,6 +54,12 @@ struct ShaftCandidates {
     uint32_t entries[kMax];
     int count = 0;
     bool transmissive = false;  // some transmissive primitive may meet the shaft
+    // The transmissive primitives that may meet it, when there are at most kMaxTransmissive
+    // (transmissive_listed): the walk through glass then tests only them.
+    static constexpr int kMaxTransmissive = 8;
+    uint32_t transmissive_entries[kMaxTransmissive];
+    int transmissive_count = 0;
+    bool transmissive_listed = false;
 };
 
 // The surface the shadow rays of a shaft leave: its primitive and geometric normal, and which
@@ -89,6 +95,10 @@ public:
     // candidates were gathered for: the same answer, testing only those primitives.
     bool occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
                         RayStats& stats) const;
+    // intersect(ray, tmax, stats, RayFilter::TransmissiveOnly) for a ray inside the shaft, when
+    // candidates.transmissive_listed: the same hit, testing only the listed primitives.
+    std::optional<HitRecord> intersect_among(const ShaftCandidates& candidates, const Ray& ray,
+                                             double tmax, RayStats& stats) const;
 
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);

@@ -63,16 +63,25 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
     const Impl& g = *impl_;
     out.count = 0;
     out.transmissive = false;
+    out.transmissive_count = 0;
+    out.transmissive_listed = true;
     if (g.nodes.empty()) return false;
     auto add = [&](uint32_t e) {
         if (out.count == ShaftCandidates::kMax) return false;
         out.entries[out.count++] = e;
         return true;
     };
+    auto add_transmissive = [&](uint32_t e) {
+        out.transmissive = true;
+        if (out.transmissive_count == ShaftCandidates::kMaxTransmissive)
+            out.transmissive_listed = false;
+        else
+            out.transmissive_entries[out.transmissive_count++] = e;
+    };
     for (size_t i = 0; i < g.planes.size(); ++i) {
         const PlanePrim& p = g.planes[i];
         if (g.has_transmissive && p.transmissive != 0) {
-            out.transmissive = true;
+            add_transmissive((kPlaneKind << kKindShift) | static_cast<uint32_t>(i));
             continue;
         }
         const int side = (p.prim == self.prim && self.ng_side != 0) ? self_side(p.n, self) : 0;
@@ -102,7 +111,7 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
                     // Shadow rays walk the transmissive primitives separately, from points
                     // along the ray: note whether one may lie in the shaft (side tests assume
                     // the rays' own origin, so only the shaft's planes may clear it).
-                    if (!out.transmissive && !outside_shaft(g, shaft, e)) out.transmissive = true;
+                    if (!outside_shaft(g, shaft, e)) add_transmissive(e);
                     continue;
                 }
                 if (culled(g, shaft, self, e)) continue;
@@ -154,6 +163,42 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     }
     c.flush(stats);
     return hit;
+}
+
+std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candidates,
+                                                   const Ray& ray, double tmax,
+                                                   RayStats& stats) const {
+    if (!ray_is_valid(ray, tmax)) {
+        ++stats.rejected_rays;
+        return std::nullopt;
+    }
+    if (!(tmax > 0)) return std::nullopt;
+    const Impl& g = *impl_;
+    Counters c;
+    Best best{tmax};
+    std::optional<RayPre> pre;
+    for (int k = 0; k < candidates.transmissive_count; ++k) {
+        const uint32_t e = candidates.transmissive_entries[k];
+        double t, b1, b2;
+        uint32_t prim;
+        if ((e >> kKindShift) == kPlaneKind) {
+            ++c.planes;
+            const PlanePrim& p = g.planes[e & kSlotMask];
+            if (intersect_plane(ray.o, ray.d, p, best.limit, t)) best.offer(t, p.prim, e & kSlotMask, 0, 0);
+            continue;
+        }
+        if (!pre) pre.emplace(ray, false);
+        if (test_entry(g, *pre, e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
+    }
+    c.flush(stats);
+    if (!best.hit) return std::nullopt;
+    HitRecord h;
+    h.t = best.t;
+    h.prim = best.prim;
+    h.slot = best.slot;
+    h.b1 = best.b1;
+    h.b2 = best.b2;
+    return h;
 }
 
 }  // namespace wsd::render

@@ -442,7 +442,10 @@ private:
         for (int k = 0; k < kMaxShadowCrossings; ++k) {
             const Ray ray{cur, P - cur};
             ++stats_.shadow_rays;
-            const auto hit = geom_.intersect(ray, 1.0, stats_, RayFilter::TransmissiveOnly);
+            // Every segment lies inside the shaft: its list, when there is one, is complete.
+            const auto hit = use_shaft_ && shaft_.transmissive_listed
+                                 ? geom_.intersect_among(shaft_, ray, 1.0, stats_)
+                                 : geom_.intersect(ray, 1.0, stats_, RayFilter::TransmissiveOnly);
             if (!hit) {
                 if (inside >= 0) T *= absorb(materials_[inside], glm::length(P - seg_start));
                 return T;

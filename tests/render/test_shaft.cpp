@@ -28,9 +28,9 @@ Quad random_quad(Rng& rng, double size) {
 
 }  // namespace
 
-TEST_CASE("shadow rays inside a shaft: the gathered primitives give the full traversal's answer") {
+TEST_CASE("shadow rays inside a shaft: the gathered primitives give the full traversal's answer, through glass too") {
     Rng rng(20261124);
-    int compared = 0, blocked = 0, used = 0;
+    int compared = 0, blocked = 0, used = 0, glass_hits = 0;
     for (int scene = 0; scene < 40; ++scene) {
         // Scales from 2^-10 to 2^10 and far from the origin, so margins are tested relative.
         const double size = std::ldexp(1.0, rng.integer(-10, 10));
@@ -60,6 +60,27 @@ TEST_CASE("shadow rays inside a shaft: the gathered primitives give the full tra
                 REQUIRE(full == among);
                 ++compared;
                 blocked += full ? 1 : 0;
+                // The walk through glass: the listed transmissive primitives give the same hit,
+                // and none at all when the shaft says no transmissive primitive meets it.
+                const auto glass = geom->intersect(ray, 1.0, stats, RayFilter::TransmissiveOnly);
+                if (!cand.transmissive) REQUIRE(!glass);
+                if (cand.transmissive_listed) {
+                    const auto listed = geom->intersect_among(cand, ray, 1.0, stats);
+                    REQUIRE(bool(glass) == bool(listed));
+                    if (glass) {
+                        REQUIRE(glass->t == listed->t);
+                        REQUIRE(glass->prim == listed->prim);
+                        REQUIRE(glass->b1 == listed->b1);
+                        ++glass_hits;
+                        // The walk's next segment starts just past that surface, on the ray.
+                        const Vec3 next = Geometry::offset_origin(geom->surface(ray, *glass), ray.d);
+                        const Ray on{next, P - next};
+                        const auto a = geom->intersect(on, 1.0, stats, RayFilter::TransmissiveOnly);
+                        const auto b = geom->intersect_among(cand, on, 1.0, stats);
+                        REQUIRE(bool(a) == bool(b));
+                        if (a) REQUIRE(a->prim == b->prim);
+                    }
+                }
             }
         }
     }
@@ -67,6 +88,7 @@ TEST_CASE("shadow rays inside a shaft: the gathered primitives give the full tra
     CHECK(used > 500);
     CHECK(blocked > 1000);
     CHECK(compared - blocked > 1000);
+    CHECK(glass_hits > 1000);
 }
 
 TEST_CASE("a shaft gathers only the primitives between the point and the light") {
