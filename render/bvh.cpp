@@ -12,6 +12,9 @@
 #include <bit>
 #include <limits>
 #include <thread>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace wsd::render {
 
@@ -22,6 +25,9 @@ namespace {
 struct F4 {
     __m128 v;
     static F4 load(const float* p) { return {_mm_loadu_ps(p)}; }
+    static F4 load_xyz(const float* p) {  // lane 3 zeroed
+        return {_mm_and_ps(_mm_loadu_ps(p), _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)))};
+    }
     static F4 splat(float x) { return {_mm_set1_ps(x)}; }
     void store(float* p) const { _mm_storeu_ps(p, v); }
     friend F4 min(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }
@@ -39,6 +45,7 @@ struct F4 {
 struct F4 {
     float v[4];
     static F4 load(const float* p) { return {{p[0], p[1], p[2], p[3]}}; }
+    static F4 load_xyz(const float* p) { return {{p[0], p[1], p[2], 0.0f}}; }
     static F4 splat(float x) { return {{x, x, x, x}}; }
     void store(float* p) const { std::copy(v, v + 4, p); }
     template <class Op>
@@ -60,7 +67,11 @@ struct F4 {
 // lane). Centroids are kept doubled (lo + hi) throughout; only their order matters.
 struct alignas(16) Ref {
     float lo[4];
-    float hi[4];
+    float hi[4];  // hi[3] == 0
+    // The bounds as vectors. The id's bits read as a float are a denormal, and arithmetic on
+    // denormals takes a slow microcode path (it made the whole build twice as slow): lo4 hides it.
+    F4 lo4() const { return F4::load_xyz(lo); }
+    F4 hi4() const { return F4::load(hi); }
     float c2(int a) const { return lo[a] + hi[a]; }
     uint32_t id() const { return std::bit_cast<uint32_t>(lo[3]); }
 };
@@ -178,7 +189,7 @@ Split find_split(const Shared& s, const Range& r, Binning& binning) {
         for (int k = 0; k < nb; ++k) bins[a][k] = Bin{Box{}, 0};
     for (uint32_t i = r.begin; i < r.end; ++i) {
         const Ref& ref = s.refs[i];
-        F4 lo = F4::load(ref.lo), hi = F4::load(ref.hi);
+        F4 lo = ref.lo4(), hi = ref.hi4();
         int k[3];
         binning.indices(lo + hi, k);
         for (int a = 0; a < 3; ++a) {
@@ -228,7 +239,7 @@ void bounds_of(const Shared& s, Range& r) {
     r.box = Box{};
     r.cbox = Box{};
     for (uint32_t i = r.begin; i < r.end; ++i) {
-        F4 lo = F4::load(s.refs[i].lo), hi = F4::load(s.refs[i].hi);
+        F4 lo = s.refs[i].lo4(), hi = s.refs[i].hi4();
         r.box.extend(lo, hi);
         r.cbox.extend_point(lo + hi);
     }
@@ -260,7 +271,7 @@ void build_child(Shared& s, Task& task, uint32_t node, const Range& r, int depth
                  Task& sub, std::thread& worker) {
     (void)task;
     (void)node;
-    sub.nodes.reserve(2 * (r.end - r.begin) / std::max(1, s.opt.max_leaf) + 2);
+    reserve_huge(sub.nodes, 2 * size_t{r.end - r.begin});  // a binary tree over n has < 2n nodes
     sub.nodes.push_back(BvhNode{});
     if (s.idle.fetch_sub(1) > 0) {
         worker = std::thread([&s, &sub, r, depth] {
@@ -312,7 +323,7 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
             auto first = s.refs.begin() + r.begin, last = s.refs.begin() + r.end;
             Box cl, cr;
             auto mid = std::partition(first, last, [&](const Ref& ref) {
-                F4 c = F4::load(ref.lo) + F4::load(ref.hi);
+                F4 c = ref.lo4() + ref.hi4();
                 int k[3];
                 binning.indices(c, k);
                 if (k[axis] <= bin) {
@@ -359,10 +370,11 @@ Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
     Bvh bvh;
     const uint32_t n = static_cast<uint32_t>(bounds.size());
     if (n == 0) return bvh;
-    std::vector<Ref> refs(n);
+    std::vector<Ref> refs;
+    reserve_huge(refs, n);
     for (uint32_t i = 0; i < n; ++i)
-        refs[i] = Ref{{bounds[i].lo.x, bounds[i].lo.y, bounds[i].lo.z, std::bit_cast<float>(i)},
-                      {bounds[i].hi.x, bounds[i].hi.y, bounds[i].hi.z, 0.0f}};
+        refs.push_back(Ref{{bounds[i].lo.x, bounds[i].lo.y, bounds[i].lo.z, std::bit_cast<float>(i)},
+                           {bounds[i].hi.x, bounds[i].hi.y, bounds[i].hi.z, 0.0f}});
 
     int threads = options.threads > 0 ? options.threads
                                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -371,16 +383,17 @@ Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
     root.end = n;
     bounds_of(s, root);
 
+    // Enough for any tree (fewer than 2n nodes), so that splicing never reallocates; untouched
+    // capacity costs no memory. The nodes are a temporary for to_bvh4, hence no shrink_to_fit.
     Task task;
-    task.nodes.reserve(2 * n / std::max(1, options.max_leaf) + 2);
+    reserve_huge(task.nodes, 2 * size_t{n});
     task.nodes.push_back(BvhNode{});
     build_node(s, task, 0, root, 0);
 
     bvh.nodes = std::move(task.nodes);
-    bvh.nodes.shrink_to_fit();
     bvh.depth = task.depth;
-    bvh.order.resize(n);
-    for (uint32_t i = 0; i < n; ++i) bvh.order[i] = refs[i].id();
+    reserve_huge(bvh.order, n);
+    for (uint32_t i = 0; i < n; ++i) bvh.order.push_back(refs[i].id());
     return bvh;
 }
 
@@ -391,10 +404,11 @@ float node_area(const BvhNode& n) {
     return x * y + y * z + z * x;
 }
 
-// Emits the Bvh4Node for the children of inner node `n` (opening the largest inner children
-// until there are four) and, depth first, the nodes below it; returns its index.
-uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4Node>& out) {
-    uint32_t kids[4] = {nodes[n].first, nodes[n].first + 1, 0, 0};
+// The children of the Bvh4Node for inner node `n`: its two children, opening the largest inner
+// one until there are four. Returns their number.
+int children4(const std::vector<BvhNode>& nodes, uint32_t n, uint32_t* kids) {
+    kids[0] = nodes[n].first;
+    kids[1] = nodes[n].first + 1;
     int count = 2;
     while (count < 4) {
         int open = -1;
@@ -406,6 +420,23 @@ uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4No
         kids[open] = nodes[inner].first;
         kids[count++] = nodes[inner].first + 1;
     }
+    return count;
+}
+
+// The number of Bvh4Nodes emit4 makes for inner node `n`.
+size_t count4(const std::vector<BvhNode>& nodes, uint32_t n) {
+    uint32_t kids[4];
+    const int count = children4(nodes, n, kids);
+    size_t total = 1;
+    for (int i = 0; i < count; ++i)
+        if (nodes[kids[i]].count == 0) total += count4(nodes, kids[i]);
+    return total;
+}
+
+// Emits the Bvh4Node for inner node `n` and, depth first, the nodes below it; returns its index.
+uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4Node>& out) {
+    uint32_t kids[4];
+    const int count = children4(nodes, n, kids);
     const uint32_t index = static_cast<uint32_t>(out.size());
     out.push_back(Bvh4Node{});
     Bvh4Node node{};
@@ -432,7 +463,8 @@ uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4No
 std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes) {
     std::vector<Bvh4Node> out;
     if (nodes.empty()) return out;
-    out.reserve(nodes.size() / 3 + 1);
+    // Counted first: the exact size, without a shrinking copy.
+    reserve_huge(out, nodes[0].count > 0 ? 1 : count4(nodes, 0));
     if (nodes[0].count > 0) {
         Bvh4Node root{};
         constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -447,8 +479,19 @@ std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes) {
     } else {
         emit4(nodes, 0, out);
     }
-    out.shrink_to_fit();
     return out;
+}
+
+void prefer_huge_pages(const void* data, size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr uintptr_t kHuge = uintptr_t{1} << 21;
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHuge - 1);
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+    (void)data;
+    (void)bytes;
+#endif
 }
 
 }  // namespace wsd::render

@@ -285,6 +285,19 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
     g.use_bvh = use_bvh;
     g.xforms.push_back(Transform{});
     Builder b{spec, errors, g, {}, {}, 0, 0, 0};
+    // Every buffer at its final size up front: a million-triangle mesh would otherwise copy
+    // them while growing, and fault in fresh pages for each copy.
+    size_t n_tris = 0, n_verts = 0, n_bounded = 0;
+    for (const ShapeSpec& s : spec.shapes) {
+        const bool mesh = s.kind == ShapeKind::Mesh && s.mesh;
+        n_tris += mesh ? s.mesh->faces.size() : (s.kind == ShapeKind::Triangle ? 1 : 0);
+        n_verts += mesh ? s.mesh->vertices.size() : (s.kind == ShapeKind::Triangle ? 3 : 0);
+        n_bounded += mesh ? s.mesh->faces.size() : (s.kind == ShapeKind::Plane ? 0 : 1);
+    }
+    reserve_huge(g.tris, n_tris);
+    reserve_huge(g.verts, n_verts);
+    reserve_huge(b.bounds, n_bounded);
+    reserve_huge(b.entries, n_bounded);
     const size_t errors_before = errors.size();
     bool limit_reported = false;
 
@@ -338,12 +351,12 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
         std::vector<TriPrim> tris;
         std::vector<SpherePrim> spheres;
         std::vector<BoxPrim> boxes;
-        tris.reserve(g.tris.size());
+        reserve_huge(tris, g.tris.size());
         spheres.reserve(g.spheres.size());
         boxes.reserve(g.boxes.size());
-        g.order.resize(bvh.order.size());
-        for (size_t k = 0; k < bvh.order.size(); ++k) {
-            uint32_t e = b.entries[bvh.order[k]];
+        g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
+        for (size_t k = 0; k < g.order.size(); ++k) {
+            uint32_t e = b.entries[g.order[k]];
             uint32_t slot = e & kSlotMask;
             auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
             uint32_t ns = 0;
