@@ -13,6 +13,9 @@
 #include <limits>
 #include <type_traits>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "render/sampling.h"
 #include "render/scene.h"
@@ -90,24 +93,40 @@ struct Term {
     bool needed;
 };
 
-// The unshadowed terms for the light sample at sh.p + to_light. Samples with nothing to
-// contribute need no shadow ray.
-inline Term sample_term(const Shading& sh, const Vec3& to_light) {
-    const double d2 = glm::dot(to_light, to_light);
-    if (!(d2 > 0.0 && d2 < kInfinity)) return {0, 0, false};
+// The direction-dependent part of a light sample's terms, for to_light = (dx, dy, dz): N·L,
+// R·V with R = 2(N·L)N − L (the mirror of L about N), and whether the sample can contribute at
+// all. No branch: a loop over many samples vectorises; invalid samples give garbage, not a trap.
+struct RawTerm {
+    double nl, rv;
+    bool ok;
+};
+
+[[gnu::always_inline]] inline RawTerm raw_term(const Shading& sh, double dx, double dy, double dz) {
+    const double d2 = (dx * dx + dy * dy) + dz * dz;
     // A sample behind an opaque surface is blocked by the surface itself, whatever a bent or
     // interpolated N says (robustness.md T11 (b), R35: no light leaks through).
-    if (sh.opaque && !(glm::dot(to_light, sh.ng_v) > 0)) return {0, 0, false};
-    const Vec3 L = to_light * (1.0 / std::sqrt(d2));
-    const double nl = glm::dot(sh.N, L);
+    const double facing = (dx * sh.ng_v.x + dy * sh.ng_v.y) + dz * sh.ng_v.z;
+    const bool ok = (d2 > 0.0) & (d2 < kInfinity) & (!sh.opaque | (facing > 0));
+    const double inv = 1.0 / std::sqrt(d2);
+    const double lx = dx * inv, ly = dy * inv, lz = dz * inv;
+    const double nl = (sh.N.x * lx + sh.N.y * ly) + sh.N.z * lz;
+    const double rv = (2.0 * nl) * sh.nv - ((lx * sh.V.x + ly * sh.V.y) + lz * sh.V.z);
+    return {nl, rv, ok};
+}
+
+// The rest: the specular power and which samples need a shadow ray (those with nothing to
+// contribute do not).
+inline Term finish_term(const Shading& sh, const RawTerm& r) {
+    if (!r.ok) return {0, 0, false};
     double sp = 0;
-    if (sh.specular > 0) {
-        // R·V with R = 2(N·L)N − L, the mirror of L about N.
-        const double rv = 2.0 * nl * sh.nv - glm::dot(L, sh.V);
-        if (rv > 0) sp = std::pow(rv, sh.shininess);
-    }
-    const double dl = nl > 0 ? nl : 0.0;
+    if (sh.specular > 0 && r.rv > 0) sp = std::pow(r.rv, sh.shininess);
+    const double dl = r.nl > 0 ? r.nl : 0.0;
     return {dl, sp, (sh.diffuse && dl > 0) || sp > 0};
+}
+
+// The unshadowed terms for the light sample at sh.p + to_light.
+inline Term sample_term(const Shading& sh, const Vec3& to_light) {
+    return finish_term(sh, raw_term(sh, to_light.x, to_light.y, to_light.z));
 }
 
 template <bool kTransmissive, bool kAdaptive>
@@ -124,6 +143,12 @@ public:
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
         cells_.resize(most);
+        cell_x_.resize(most);
+        cell_y_.resize(most);
+        cell_z_.resize(most);
+        raw_nl_.resize(most);
+        raw_rv_.resize(most);
+        raw_ok_.resize(most);
         if constexpr (kAdaptive) {
             vis_.resize(most);
             state_.resize(most);
@@ -284,16 +309,67 @@ private:
         return light.cell_point(i, j, xi.u, xi.v);
     }
 
+    // raw_term() for n sample points into raw_nl_, raw_rv_, raw_ok_; two at a time with SSE2,
+    // which rounds each operation exactly as the scalar code does (the same image either way).
+    void raw_terms(const Shading& sh, int n, const double* px, const double* py, const double* pz) {
+        double* const nl = raw_nl_.data();
+        double* const rv = raw_rv_.data();
+        double* const ok = raw_ok_.data();
+        int k = 0;
+#if defined(__SSE2__)
+        const __m128d p_x = _mm_set1_pd(sh.p.x), p_y = _mm_set1_pd(sh.p.y), p_z = _mm_set1_pd(sh.p.z);
+        const __m128d g_x = _mm_set1_pd(sh.ng_v.x), g_y = _mm_set1_pd(sh.ng_v.y), g_z = _mm_set1_pd(sh.ng_v.z);
+        const __m128d n_x = _mm_set1_pd(sh.N.x), n_y = _mm_set1_pd(sh.N.y), n_z = _mm_set1_pd(sh.N.z);
+        const __m128d v_x = _mm_set1_pd(sh.V.x), v_y = _mm_set1_pd(sh.V.y), v_z = _mm_set1_pd(sh.V.z);
+        const __m128d nv = _mm_set1_pd(sh.nv), zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0),
+                      two = _mm_set1_pd(2.0), inf = _mm_set1_pd(kInfinity);
+        const __m128d all = _mm_castsi128_pd(_mm_set1_epi32(-1));
+        const __m128d not_opaque = sh.opaque ? zero : all;
+        for (; k + 2 <= n; k += 2) {
+            const __m128d dx = _mm_sub_pd(_mm_loadu_pd(px + k), p_x);
+            const __m128d dy = _mm_sub_pd(_mm_loadu_pd(py + k), p_y);
+            const __m128d dz = _mm_sub_pd(_mm_loadu_pd(pz + k), p_z);
+            const __m128d d2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+            const __m128d facing =
+                _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, g_x), _mm_mul_pd(dy, g_y)), _mm_mul_pd(dz, g_z));
+            const __m128d valid = _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(d2, zero), _mm_cmplt_pd(d2, inf)),
+                                             _mm_or_pd(not_opaque, _mm_cmpgt_pd(facing, zero)));
+            const __m128d inv = _mm_div_pd(one, _mm_sqrt_pd(d2));
+            const __m128d lx = _mm_mul_pd(dx, inv), ly = _mm_mul_pd(dy, inv), lz = _mm_mul_pd(dz, inv);
+            const __m128d dn = _mm_add_pd(_mm_add_pd(_mm_mul_pd(n_x, lx), _mm_mul_pd(n_y, ly)), _mm_mul_pd(n_z, lz));
+            const __m128d lv = _mm_add_pd(_mm_add_pd(_mm_mul_pd(lx, v_x), _mm_mul_pd(ly, v_y)), _mm_mul_pd(lz, v_z));
+            _mm_storeu_pd(nl + k, dn);
+            _mm_storeu_pd(rv + k, _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(two, dn), nv), lv));
+            _mm_storeu_pd(ok + k, _mm_and_pd(valid, one));
+        }
+#endif
+        for (; k < n; ++k) {
+            const RawTerm r = raw_term(sh, px[k] - sh.p.x, py[k] - sh.p.y, pz[k] - sh.p.z);
+            nl[k] = r.nl;
+            rv[k] = r.rv;
+            ok[k] = r.ok ? 1.0 : 0.0;
+        }
+    }
+
     // Every cell gets its own shadow ray (the hot loop: no allocation, no virtual call). First
     // every cell's point and unshadowed terms: independent of each other, so the processor
     // overlaps their square roots and divisions. Then the shadow rays, summed in cell order.
     void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
         int n = 0;
+        double* const px = cell_x_.data();
+        double* const py = cell_y_.data();
+        double* const pz = cell_z_.data();
         for (int j = 0; j < light.nv; ++j) {
             for (int i = 0; i < light.nu; ++i) {
                 const Vec3 P = cell_point(light, lkey, i, j);
-                cells_[size_t(n++)] = {P, sample_term(sh, P - sh.p)};
+                px[n] = P.x, py[n] = P.y, pz[n] = P.z;
+                ++n;
             }
+        }
+        raw_terms(sh, n, px, py, pz);
+        for (int k = 0; k < n; ++k) {
+            const RawTerm r{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0};
+            cells_[size_t(k)] = {Vec3(px[k], py[k], pz[k]), finish_term(sh, r)};
         }
         if (use_shaft_ && shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)) {
             // Nothing in the shaft can block or tint the light: every ray would answer 1.
@@ -488,6 +564,8 @@ private:
         Term term;
     };
     std::vector<Cell> cells_;     // full_area: the current point's cells
+    std::vector<double> cell_x_, cell_y_, cell_z_;  // full_area: their points, by coordinate
+    std::vector<double> raw_nl_, raw_rv_, raw_ok_;  // full_area: their raw_term()s
     std::vector<Vis> vis_;        // adaptive lights: per-cell visibility of the current point
     std::vector<uint8_t> state_;  // adaptive lights: kUnknown, kFilled or kProbed per cell
 };
