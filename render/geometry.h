@@ -54,6 +54,7 @@ struct ShaftCandidates {
     uint32_t entries[kMax];
     int count = 0;
     bool transmissive = false;  // some transmissive primitive may meet the shaft
+    bool blocked = false;       // an opaque sphere meets every ray: all are blocked (Shaft::blocks_all)
     // The transmissive primitives that may meet it, when there are at most kMaxTransmissive
     // (transmissive_listed): the walk through glass then tests only them.
     static constexpr int kMaxTransmissive = 8;
@@ -92,7 +93,8 @@ public:
     bool gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
                       RayStats& stats) const;
     // occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the shaft the
-    // candidates were gathered for: the same answer, testing only those primitives.
+    // candidates were gathered for: the same answer, testing only those primitives (none when
+    // the shaft is known to be blocked).
     bool occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
                         RayStats& stats) const;
     // intersect(ray, tmax, stats, RayFilter::TransmissiveOnly) for a ray inside the shaft, when

@@ -3,7 +3,9 @@
 // those rays then tests only them.
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <optional>
+#include <type_traits>
 
 #include "render/geometry_impl.h"
 #include "render/prim_test.h"
@@ -14,6 +16,23 @@ namespace wsd::render {
 using namespace detail;
 
 namespace {
+
+// The triangle test's per-ray setup (the shear, three divisions), made on first use only: the
+// candidates are often all spheres. Raw storage: no zeroing of a struct most rays never use.
+class LazyRayPre {
+public:
+    explicit LazyRayPre(const Ray& ray) : ray_(ray) {}
+    const RayPre& get() {
+        if (!pre_) pre_ = new (storage_) RayPre(ray_, false);
+        return *pre_;
+    }
+
+private:
+    static_assert(std::is_trivially_destructible_v<RayPre>);
+    const Ray& ray_;
+    RayPre* pre_ = nullptr;
+    alignas(RayPre) unsigned char storage_[sizeof(RayPre)];
+};
 
 // Entries of ShaftCandidates with this kind are planes (the BVH's entries use kinds 0–2).
 constexpr uint32_t kPlaneKind = 3;
@@ -62,6 +81,7 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
                             RayStats& stats) const {
     const Impl& g = *impl_;
     out.count = 0;
+    out.blocked = false;
     out.transmissive = false;
     out.transmissive_count = 0;
     out.transmissive_listed = true;
@@ -115,6 +135,14 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
                     continue;
                 }
                 if (culled(g, shaft, self, e)) continue;
+                if (((e >> kKindShift) & 3u) == uint32_t(PrimKind::Sphere)) {
+                    const SpherePrim& ball = g.spheres[e & kSlotMask];
+                    if (ball.xform == kNoTransform && shaft.blocks_all(ball.center, ball.radius)) {
+                        out.blocked = true;
+                        stats.box_tests += boxes;
+                        return true;
+                    }
+                }
                 if (!add(e)) {
                     fits = false;
                     break;
@@ -135,12 +163,12 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
         return false;
     }
     if (!(tmax > 0)) return false;
+    if (candidates.blocked) return true;
     const Impl& g = *impl_;
     Counters c;
     bool hit = false;
-    // The triangle test's per-ray setup (the shear, three divisions) only when a triangle or
-    // box is among the candidates; spheres in world space need only d·d.
-    std::optional<RayPre> pre;
+    // Spheres in world space need only d·d; the rest the lazily made RayPre.
+    LazyRayPre pre(ray);
     const double a = glm::dot(ray.d, ray.d), inv_a = 1.0 / a;
     for (int k = 0; k < candidates.count && !hit; ++k) {
         const uint32_t e = candidates.entries[k];
@@ -157,8 +185,7 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
             hit = intersect_sphere(ray.o, ray.d, a, inv_a, sp.center, sp.radius, Vec3(0), tmax, t);
             c.sph_hits += hit ? 1 : 0;
         } else {
-            if (!pre) pre.emplace(ray, false);
-            hit = test_entry(g, *pre, e, tmax, c, t, prim, b1, b2);
+            hit = test_entry(g, pre.get(), e, tmax, c, t, prim, b1, b2);
         }
     }
     c.flush(stats);
@@ -176,7 +203,7 @@ std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candid
     const Impl& g = *impl_;
     Counters c;
     Best best{tmax};
-    std::optional<RayPre> pre;
+    LazyRayPre pre(ray);
     for (int k = 0; k < candidates.transmissive_count; ++k) {
         const uint32_t e = candidates.transmissive_entries[k];
         double t, b1, b2;
@@ -187,8 +214,7 @@ std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candid
             if (intersect_plane(ray.o, ray.d, p, best.limit, t)) best.offer(t, p.prim, e & kSlotMask, 0, 0);
             continue;
         }
-        if (!pre) pre.emplace(ray, false);
-        if (test_entry(g, *pre, e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
+        if (test_entry(g, pre.get(), e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
     }
     c.flush(stats);
     if (!best.hit) return std::nullopt;

@@ -371,6 +371,14 @@ private:
             const RawTerm r{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0};
             cells_[size_t(k)] = {Vec3(px[k], py[k], pz[k]), finish_term(sh, r)};
         }
+        if (use_shaft_ && shaft_.blocked) {
+            // Every ray would answer 0: the sums stay as they are.
+            uint64_t rays = 0;
+            for (int k = 0; k < n; ++k) rays += cells_[size_t(k)].term.needed ? 1 : 0;
+            stats_.shadow_rays += rays;
+            stats_.shaft_answered_rays += rays;
+            return;
+        }
         if (use_shaft_ && shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)) {
             // Nothing in the shaft can block or tint the light: every ray would answer 1.
             uint64_t rays = 0;
@@ -492,9 +500,9 @@ private:
         bool blocked;
         if (!use_shaft_) {
             blocked = geom_.occluded(ray, 1.0, stats_, RayFilter::OpaqueOnly);
-        } else if (shaft_.count == 0) {
-            ++stats_.shaft_answered_rays;  // nothing opaque can be met: no test needed
-            blocked = false;
+        } else if (shaft_.blocked || shaft_.count == 0) {
+            ++stats_.shaft_answered_rays;  // the shaft knows the answer: no test needed
+            blocked = shaft_.blocked;
         } else {
             blocked = geom_.occluded_among(shaft_, ray, 1.0, stats_);
         }

@@ -132,6 +132,29 @@ public:
         return true;
     }
 
+    // With an origin set: true when the ball (centre, radius) meets every segment from the
+    // origin to the light, by a margin of 1e-6 of its radius that dwarfs any rounding, so that
+    // each ray's own test must find it. The origin is well outside the ball; the ball lies wholly
+    // on the origin's side of the light's plane (a ray entering it has not reached the light);
+    // and each corner of the light is seen through the ball's shrunk silhouette: that is a
+    // convex cone, so it holds the whole parallelogram when it holds the corners.
+    bool blocks_all(const Vec3& centre, double radius) const {
+        if (!has_origin_ || !(radius > 0)) return false;
+        const Vec3 oc = centre - origin_;
+        const double outer = radius * (1 + 1e-6), inner = radius * (1 - 1e-6);
+        if (!(glm::dot(oc, oc) > outer * outer)) return false;
+        const double slack = 1e-9 * (scale_ + max_abs(centre) + radius);
+        if (!(glm::dot(normal_[4], centre) - offset_[4] > outer + slack)) return false;
+        for (const Vec3& q : corner_) {
+            const Vec3 w = q - origin_;
+            if (!(glm::dot(w, oc) > 0)) return false;
+            // The distance from the centre to the line through the corner, without cancellation.
+            const Vec3 x = glm::cross(w, oc);
+            if (!(glm::dot(x, x) < inner * inner * glm::dot(w, w))) return false;
+        }
+        return true;
+    }
+
     // With an origin set: the same for the plane n·x = c (n unit), the origin's side known
     // (origin_side ≠ 0) or certain.
     bool clear_of_plane(const Vec3& n, double c, int origin_side) const {

@@ -166,7 +166,7 @@ SceneSpec surfaces_scene(Rng& rng, double size) {
 
 TEST_CASE("shadow rays leaving a surface: primitives cleared by side give the full traversal's answer") {
     Rng rng(20261125);
-    int compared = 0, blocked = 0, used = 0, with_side = 0;
+    int compared = 0, blocked = 0, used = 0, with_side = 0, blocked_shafts = 0;
     long gathered_plain = 0, gathered_sides = 0;
     for (int scene = 0; scene < 30; ++scene) {
         const double size = std::ldexp(1.0, rng.integer(-10, 10));
@@ -187,6 +187,7 @@ TEST_CASE("shadow rays leaving a surface: primitives cleared by side give the fu
             if (!geom->gather_shaft(sides.shaft, sides.self, cand, stats)) continue;
             ++used;
             with_side += sides.self.ng_side != 0 ? 1 : 0;
+            blocked_shafts += cand.blocked ? 1 : 0;
             if (fits_plain) {
                 gathered_plain += cand_plain.count;
                 gathered_sides += cand.count;
@@ -205,6 +206,7 @@ TEST_CASE("shadow rays leaving a surface: primitives cleared by side give the fu
     }
     CHECK(used > 1000);
     CHECK(with_side > 500);
+    CHECK(blocked_shafts > 5);  // shafts a sphere blocks entirely: every ray must agree
     CHECK(blocked > 1000);
     CHECK(compared - blocked > 1000);
     // The side tests must really clear primitives (the surface's own, at least).
@@ -234,6 +236,53 @@ TEST_CASE("a point on a flat floor gathers neither floor triangle, axis-aligned 
         // (its side is known by construction) and the other one's side cannot be certain.
         CHECK(cand.count == (turned ? 1 : 0));
     }
+}
+
+TEST_CASE("a sphere blocks a whole shaft only when every ray from the origin to the light meets it") {
+    // Lights behind a sphere as seen from a point, from well inside its silhouette to across its
+    // edge, at scales 2^-10 to 2^10: each shaft blocks_all() accepts must block every ray.
+    Rng rng(20261126);
+    int accepted = 0, refused_all_blocked = 0, refused = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const double size = std::ldexp(1.0, rng.integer(-10, 10));
+        const Vec3 centre = rng.in_box(Vec3(-size), Vec3(size));
+        const double radius = size * rng.uniform(0.05, 1);
+        const Vec3 axis = rng.unit_vector();
+        const Vec3 origin = centre - axis * radius * rng.log_uniform(0.001, 1.3);
+        // The light's centre on a line through the sphere, up to about the silhouette's edge.
+        const double dist = glm::length(centre - origin);
+        const double spread = std::asin(radius / dist) * rng.uniform(0, 1.3);
+        Vec3 side = glm::normalize(glm::cross(axis, rng.unit_vector()));
+        const Vec3 dir = std::cos(spread) * axis + std::sin(spread) * side;
+        const double beyond = dist + radius * rng.uniform(-1.5, 4);  // some cut the sphere
+        const Vec3 light_centre = origin + dir * beyond;
+        const double extent = radius * rng.log_uniform(-4, 0.3);
+        const Vec3 u = extent * glm::normalize(glm::cross(dir, rng.unit_vector()));
+        const Vec3 v = extent * glm::normalize(glm::cross(dir, u));
+        const Vec3 corner = light_centre - 0.5 * (u + v);
+        Shaft shaft;
+        if (!shaft.init(origin, 0, corner, u, v)) continue;
+        shaft.set_origin(origin);
+        auto geom = build_ok(scene_of({sphere(centre, radius, 0)}));
+        REQUIRE(geom);
+        RayStats stats;
+        bool all = true;
+        for (int k = 0; k < 200; ++k) {
+            const Vec3 P = corner + rng.uniform() * u + rng.uniform() * v;
+            all = all && geom->occluded(Ray{origin, P - origin}, 1.0, stats, RayFilter::OpaqueOnly);
+        }
+        if (shaft.blocks_all(centre, radius)) {
+            ++accepted;
+            REQUIRE(all);
+        } else {
+            ++refused;
+            refused_all_blocked += all ? 1 : 0;
+        }
+    }
+    // Both answers occur often, and many fully blocked lights are recognised as such.
+    CHECK(accepted > 300);
+    CHECK(refused > 300);
+    CHECK(accepted > refused_all_blocked);
 }
 
 TEST_CASE("a shaft whose apex touches the light's plane is refused") {
