@@ -142,7 +142,8 @@ public:
           background_(scene.settings().background) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
-        cells_.resize(most);
+        cell_s_.resize(most);
+        cell_t_.resize(most);
         cell_x_.resize(most);
         cell_y_.resize(most);
         cell_z_.resize(most);
@@ -309,42 +310,61 @@ private:
         return light.cell_point(i, j, xi.u, xi.v);
     }
 
-    // raw_term() for n sample points into raw_nl_, raw_rv_, raw_ok_; two at a time with SSE2,
-    // which rounds each operation exactly as the scalar code does (the same image either way).
-    void raw_terms(const Shading& sh, int n, const double* px, const double* py, const double* pz) {
+    // The points of n light cells, corner + s·du + t·dv for the cell coordinates (s, t) in
+    // cell_s_, cell_t_ (as Light::cell_point computes them), into cell_x_, cell_y_, cell_z_, and
+    // their raw_term()s into raw_nl_, raw_rv_, raw_ok_. Two cells at a time with SSE2, which
+    // rounds each operation exactly as the scalar code does (the same image either way).
+    void cell_terms(const Shading& sh, const Light& light, int n) {
+        const double* const cs = cell_s_.data();
+        const double* const ct = cell_t_.data();
+        double* const px = cell_x_.data();
+        double* const py = cell_y_.data();
+        double* const pz = cell_z_.data();
         double* const nl = raw_nl_.data();
         double* const rv = raw_rv_.data();
         double* const ok = raw_ok_.data();
         int k = 0;
 #if defined(__SSE2__)
-        const __m128d p_x = _mm_set1_pd(sh.p.x), p_y = _mm_set1_pd(sh.p.y), p_z = _mm_set1_pd(sh.p.z);
-        const __m128d g_x = _mm_set1_pd(sh.ng_v.x), g_y = _mm_set1_pd(sh.ng_v.y), g_z = _mm_set1_pd(sh.ng_v.z);
-        const __m128d n_x = _mm_set1_pd(sh.N.x), n_y = _mm_set1_pd(sh.N.y), n_z = _mm_set1_pd(sh.N.z);
-        const __m128d v_x = _mm_set1_pd(sh.V.x), v_y = _mm_set1_pd(sh.V.y), v_z = _mm_set1_pd(sh.V.z);
-        const __m128d nv = _mm_set1_pd(sh.nv), zero = _mm_setzero_pd(), one = _mm_set1_pd(1.0),
-                      two = _mm_set1_pd(2.0), inf = _mm_set1_pd(kInfinity);
-        const __m128d all = _mm_castsi128_pd(_mm_set1_epi32(-1));
-        const __m128d not_opaque = sh.opaque ? zero : all;
+        auto splat = [](double x) { return _mm_set1_pd(x); };
+        const __m128d c_x = splat(light.corner.x), c_y = splat(light.corner.y), c_z = splat(light.corner.z);
+        const __m128d u_x = splat(light.du.x), u_y = splat(light.du.y), u_z = splat(light.du.z);
+        const __m128d v_x = splat(light.dv.x), v_y = splat(light.dv.y), v_z = splat(light.dv.z);
+        const __m128d p_x = splat(sh.p.x), p_y = splat(sh.p.y), p_z = splat(sh.p.z);
+        const __m128d g_x = splat(sh.ng_v.x), g_y = splat(sh.ng_v.y), g_z = splat(sh.ng_v.z);
+        const __m128d n_x = splat(sh.N.x), n_y = splat(sh.N.y), n_z = splat(sh.N.z);
+        const __m128d w_x = splat(sh.V.x), w_y = splat(sh.V.y), w_z = splat(sh.V.z);
+        const __m128d nv = splat(sh.nv), zero = _mm_setzero_pd(), one = splat(1.0), two = splat(2.0),
+                      inf = splat(kInfinity);
+        const __m128d not_opaque = sh.opaque ? zero : _mm_castsi128_pd(_mm_set1_epi32(-1));
+        auto mul = [](__m128d a, __m128d b) { return _mm_mul_pd(a, b); };
+        auto add = [](__m128d a, __m128d b) { return _mm_add_pd(a, b); };
+        auto sub = [](__m128d a, __m128d b) { return _mm_sub_pd(a, b); };
         for (; k + 2 <= n; k += 2) {
-            const __m128d dx = _mm_sub_pd(_mm_loadu_pd(px + k), p_x);
-            const __m128d dy = _mm_sub_pd(_mm_loadu_pd(py + k), p_y);
-            const __m128d dz = _mm_sub_pd(_mm_loadu_pd(pz + k), p_z);
-            const __m128d d2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
-            const __m128d facing =
-                _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, g_x), _mm_mul_pd(dy, g_y)), _mm_mul_pd(dz, g_z));
+            const __m128d s = _mm_loadu_pd(cs + k), t = _mm_loadu_pd(ct + k);
+            const __m128d x = add(add(c_x, mul(s, u_x)), mul(t, v_x));
+            const __m128d y = add(add(c_y, mul(s, u_y)), mul(t, v_y));
+            const __m128d z = add(add(c_z, mul(s, u_z)), mul(t, v_z));
+            _mm_storeu_pd(px + k, x);
+            _mm_storeu_pd(py + k, y);
+            _mm_storeu_pd(pz + k, z);
+            const __m128d dx = sub(x, p_x), dy = sub(y, p_y), dz = sub(z, p_z);
+            const __m128d d2 = add(add(mul(dx, dx), mul(dy, dy)), mul(dz, dz));
+            const __m128d facing = add(add(mul(dx, g_x), mul(dy, g_y)), mul(dz, g_z));
             const __m128d valid = _mm_and_pd(_mm_and_pd(_mm_cmpgt_pd(d2, zero), _mm_cmplt_pd(d2, inf)),
                                              _mm_or_pd(not_opaque, _mm_cmpgt_pd(facing, zero)));
             const __m128d inv = _mm_div_pd(one, _mm_sqrt_pd(d2));
-            const __m128d lx = _mm_mul_pd(dx, inv), ly = _mm_mul_pd(dy, inv), lz = _mm_mul_pd(dz, inv);
-            const __m128d dn = _mm_add_pd(_mm_add_pd(_mm_mul_pd(n_x, lx), _mm_mul_pd(n_y, ly)), _mm_mul_pd(n_z, lz));
-            const __m128d lv = _mm_add_pd(_mm_add_pd(_mm_mul_pd(lx, v_x), _mm_mul_pd(ly, v_y)), _mm_mul_pd(lz, v_z));
+            const __m128d lx = mul(dx, inv), ly = mul(dy, inv), lz = mul(dz, inv);
+            const __m128d dn = add(add(mul(n_x, lx), mul(n_y, ly)), mul(n_z, lz));
+            const __m128d lv = add(add(mul(lx, w_x), mul(ly, w_y)), mul(lz, w_z));
             _mm_storeu_pd(nl + k, dn);
-            _mm_storeu_pd(rv + k, _mm_sub_pd(_mm_mul_pd(_mm_mul_pd(two, dn), nv), lv));
+            _mm_storeu_pd(rv + k, sub(mul(mul(two, dn), nv), lv));
             _mm_storeu_pd(ok + k, _mm_and_pd(valid, one));
         }
 #endif
         for (; k < n; ++k) {
-            const RawTerm r = raw_term(sh, px[k] - sh.p.x, py[k] - sh.p.y, pz[k] - sh.p.z);
+            const Vec3 P = light.corner + cs[k] * light.du + ct[k] * light.dv;
+            px[k] = P.x, py[k] = P.y, pz[k] = P.z;
+            const RawTerm r = raw_term(sh, P.x - sh.p.x, P.y - sh.p.y, P.z - sh.p.z);
             nl[k] = r.nl;
             rv[k] = r.rv;
             ok[k] = r.ok ? 1.0 : 0.0;
@@ -352,53 +372,45 @@ private:
     }
 
     // Every cell gets its own shadow ray (the hot loop: no allocation, no virtual call). First
-    // every cell's point and unshadowed terms: independent of each other, so the processor
-    // overlaps their square roots and divisions. Then the shadow rays, summed in cell order.
+    // every cell's point and unshadowed terms: independent of each other, so they vectorise and
+    // their square roots and divisions overlap. Then the shadow rays, summed in cell order.
     void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
         int n = 0;
-        double* const px = cell_x_.data();
-        double* const py = cell_y_.data();
-        double* const pz = cell_z_.data();
         for (int j = 0; j < light.nv; ++j) {
-            for (int i = 0; i < light.nu; ++i) {
-                const Vec3 P = cell_point(light, lkey, i, j);
-                px[n] = P.x, py[n] = P.y, pz[n] = P.z;
-                ++n;
+            for (int i = 0; i < light.nu; ++i, ++n) {
+                const Uniform2 xi = light.uniform ? Uniform2{0.5, 0.5} : cell_jitter(lkey, uint32_t(n));
+                cell_s_[size_t(n)] = double(i) + xi.u;
+                cell_t_[size_t(n)] = double(j) + xi.v;
             }
         }
-        raw_terms(sh, n, px, py, pz);
-        for (int k = 0; k < n; ++k) {
-            const RawTerm r{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0};
-            cells_[size_t(k)] = {Vec3(px[k], py[k], pz[k]), finish_term(sh, r)};
-        }
-        if (use_shaft_ && shaft_.blocked) {
-            // Every ray would answer 0: the sums stay as they are.
-            uint64_t rays = 0;
-            for (int k = 0; k < n; ++k) rays += cells_[size_t(k)].term.needed ? 1 : 0;
-            stats_.shadow_rays += rays;
-            stats_.shaft_answered_rays += rays;
-            return;
-        }
-        if (use_shaft_ && shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)) {
-            // Nothing in the shaft can block or tint the light: every ray would answer 1.
+        cell_terms(sh, light, n);
+        auto term = [&](int k) {
+            return finish_term(sh, RawTerm{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0});
+        };
+        if (use_shaft_ && (shaft_.blocked || (shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)))) {
+            // The shaft knows every ray's answer: 0 (the sums stay as they are) or 1.
+            const bool lit = !shaft_.blocked;
             uint64_t rays = 0;
             for (int k = 0; k < n; ++k) {
-                const Term& term = cells_[size_t(k)].term;
-                if (!term.needed) continue;
+                const Term t = term(k);
+                if (!t.needed) continue;
                 ++rays;
-                sd += Vis(term.nl);
-                ss += Vis(term.sp);
+                if (lit) {
+                    sd += Vis(t.nl);
+                    ss += Vis(t.sp);
+                }
             }
             stats_.shadow_rays += rays;
             stats_.shaft_answered_rays += rays;
             return;
         }
         for (int k = 0; k < n; ++k) {
-            const Cell& cell = cells_[size_t(k)];
-            if (!cell.term.needed) continue;
-            const Vis v = visibility(sh, cell.P - sh.p, cell.P);
-            sd += v * cell.term.nl;
-            ss += v * cell.term.sp;
+            const Term t = term(k);
+            if (!t.needed) continue;
+            const Vec3 P(cell_x_[size_t(k)], cell_y_[size_t(k)], cell_z_[size_t(k)]);
+            const Vis v = visibility(sh, P - sh.p, P);
+            sd += v * t.nl;
+            ss += v * t.sp;
         }
     }
 
@@ -567,12 +579,8 @@ private:
     int max_depth_;
     double bailout_;
     Color background_;
-    struct Cell {
-        Vec3 P;  // the sample point on the light
-        Term term;
-    };
-    std::vector<Cell> cells_;     // full_area: the current point's cells
-    std::vector<double> cell_x_, cell_y_, cell_z_;  // full_area: their points, by coordinate
+    // full_area: the current point's cells, by coordinate: (s, t) in cell units, the point.
+    std::vector<double> cell_s_, cell_t_, cell_x_, cell_y_, cell_z_;
     std::vector<double> raw_nl_, raw_rv_, raw_ok_;  // full_area: their raw_term()s
     std::vector<Vis> vis_;        // adaptive lights: per-cell visibility of the current point
     std::vector<uint8_t> state_;  // adaptive lights: kUnknown, kFilled or kProbed per cell
