@@ -374,7 +374,8 @@ private:
     // Every cell gets its own shadow ray (the hot loop: no allocation, no virtual call). First
     // every cell's point and unshadowed terms: independent of each other, so they vectorise and
     // their square roots and divisions overlap. Then the shadow rays, summed in cell order.
-    void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
+    // Every cell's point and raw terms (cell_terms), in cell order; returns the cell count.
+    int prepare_cells(const Shading& sh, const Light& light, uint64_t lkey) {
         int n = 0;
         for (int j = 0; j < light.nv; ++j) {
             for (int i = 0; i < light.nu; ++i, ++n) {
@@ -384,9 +385,17 @@ private:
             }
         }
         cell_terms(sh, light, n);
-        auto term = [&](int k) {
-            return finish_term(sh, RawTerm{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0});
-        };
+        return n;
+    }
+
+    // Cell k's unshadowed terms, after prepare_cells (sample_term's value for its point).
+    Term cell_term(const Shading& sh, int k) const {
+        return finish_term(sh, RawTerm{raw_nl_[size_t(k)], raw_rv_[size_t(k)], raw_ok_[size_t(k)] != 0});
+    }
+
+    void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
+        const int n = prepare_cells(sh, light, lkey);
+        auto term = [&](int k) { return cell_term(sh, k); };
         if (use_shaft_ && (shaft_.blocked || (shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)))) {
             // The shaft knows every ray's answer: 0 (the sums stay as they are) or 1.
             const bool lit = !shaft_.blocked;
@@ -439,15 +448,13 @@ private:
             fill(nu, 0, 0, nu - 1, nv - 1, a);
         else
             refine(probe, nu, 0, 0, nu - 1, nv - 1);
-        for (int j = 0; j < nv; ++j) {
-            for (int i = 0; i < nu; ++i) {
-                const Vec3 P = cell_point(light, lkey, i, j);
-                const Term term = sample_term(sh, P - sh.p);
-                if (!term.needed) continue;
-                const Vis& v = vis_[size_t(j * nu + i)];
-                sd += v * term.nl;
-                ss += v * term.sp;
-            }
+        const int n = prepare_cells(sh, light, lkey);
+        for (int k = 0; k < n; ++k) {
+            const Term term = cell_term(sh, k);
+            if (!term.needed) continue;
+            const Vis& v = vis_[size_t(k)];
+            sd += v * term.nl;
+            ss += v * term.sp;
         }
     }
 
