@@ -23,6 +23,8 @@ t=$( { time "$wsd" render examples/cornell.wsd -o "$out/wsd.png" --width "$size"
          --threads "$threads" --quiet --stats-json "$out/wsd.json" "${wsd_flags[@]}" >/dev/null 2>&1; } 2>&1 )
 wsd_cpu=$(awk '{print $1 + $2}' <<<"$t")
 wsd_rays=$(python3 -c "import json;d=json.load(open('$out/wsd.json'));print(d['camera_rays']+d['shadow_rays']+d['reflection_rays']+d['refraction_rays'])")
+# Shadow rays whose shaft proved the answer (fully lit or fully blocked) and needed no traversal.
+wsd_shaft=$(python3 -c "import json;print(json.load(open('$out/wsd.json')).get('shaft_answered_rays', 0))")
 
 t=$( { time povray +Ibench/scenes/cornell.pov +O"$out/pov.png" +W"$size" +H"$size" +A0.0 +AM1 +R2 \
          +WT"$threads" -D -V "${pov_flags[@]}" >"$out/pov.log" 2>&1; } 2>&1 )
@@ -33,4 +35,5 @@ pov_rays=$(awk '/^Rays:/ {r=$2} /^Shadow Ray Tests:/ {s=$4} END {print r + s}' "
 printf '%-8s %12s %14s %16s\n' renderer CPU-s ray-queries rays/CPU-s
 printf '%-8s %12.2f %14d %16.0f\n' wsd "$wsd_cpu" "$wsd_rays" "$(awk "BEGIN{print $wsd_rays/$wsd_cpu}")"
 printf '%-8s %12.2f %14d %16.0f\n' povray "$pov_cpu" "$pov_rays" "$(awk "BEGIN{print $pov_rays/$pov_cpu}")"
+awk "BEGIN{printf \"wsd: %d of its shadow rays answered by their shaft alone; %.0f traversals per CPU-s\n\", $wsd_shaft, ($wsd_rays - $wsd_shaft)/$wsd_cpu}"
 awk "BEGIN{printf \"povray/wsd CPU-time ratio: %.2f; rays/CPU-s ratio wsd/povray: %.2f\n\", $pov_cpu/$wsd_cpu, ($wsd_rays/$wsd_cpu)/($pov_rays/$pov_cpu)}"
