@@ -1,7 +1,7 @@
 // Binned SAH BVH builder (see bvh.h). Primitive references (bounds + id, 32 bytes) are
 // partitioned in place so every pass reads memory in order; children's bounds come from the bins,
-// their centroid bounds from the partition pass. Subtrees above kSubtreeMin primitives are built
-// into their own node arrays (on another thread when one is idle) and spliced in afterwards.
+// their centroid bounds from the partition pass. Subtrees above kSubtreeMin primitives go to
+// another thread when one is idle, into their own node arrays that are spliced in afterwards.
 #include "render/bvh.h"
 
 #include <algorithm>
@@ -266,22 +266,11 @@ void median_split(Shared& s, const Range& r, Range& left, Range& right) {
 
 void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth);
 
-// Builds the subtree of `r` into its own array (root at index 0) and splices it under `node`.
-void build_child(Shared& s, Task& task, uint32_t node, const Range& r, int depth,
-                 Task& sub, std::thread& worker) {
-    (void)task;
-    (void)node;
-    reserve_huge(sub.nodes, 2 * size_t{r.end - r.begin});  // a binary tree over n has < 2n nodes
-    sub.nodes.push_back(BvhNode{});
-    if (s.idle.fetch_sub(1) > 0) {
-        worker = std::thread([&s, &sub, r, depth] {
-            build_node(s, sub, 0, r, depth);
-            s.idle.fetch_add(1);
-        });
-    } else {
-        s.idle.fetch_add(1);
-        build_node(s, sub, 0, r, depth);
-    }
+// Claims an idle thread, if there is one.
+bool claim_thread(Shared& s) {
+    if (s.idle.fetch_sub(1) > 0) return true;
+    s.idle.fetch_add(1);
+    return false;
 }
 
 void splice(Task& task, uint32_t node, Task& sub) {
@@ -351,12 +340,19 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
     task.nodes[node].first = pair;
     task.nodes[node].count = 0;
 
-    if (right.end - right.begin >= kSubtreeMin) {
+    if (right.end - right.begin >= kSubtreeMin && claim_thread(s)) {
+        // The right subtree is built on another thread into its own array (root at index 0)
+        // and spliced in afterwards. Without a thread it goes straight into ours: the binary
+        // layout then differs, but not the tree, so to_bvh4 (depth first) emits the same nodes.
         Task sub;
-        std::thread worker;
-        build_child(s, task, pair + 1, right, depth + 1, sub, worker);
+        reserve_huge(sub.nodes, 2 * size_t{right.end - right.begin});  // < 2n nodes
+        sub.nodes.push_back(BvhNode{});
+        std::thread worker([&s, &sub, right, depth] {
+            build_node(s, sub, 0, right, depth + 1);
+            s.idle.fetch_add(1);
+        });
         build_node(s, task, pair, left, depth + 1);
-        if (worker.joinable()) worker.join();
+        worker.join();
         splice(task, pair + 1, sub);
     } else {
         build_node(s, task, pair, left, depth + 1);

@@ -60,7 +60,7 @@ inline int entered_children(const Bvh4Node& node, int mask, const float* tn, Sta
 
 template <int kFilter>
 void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
-    auto leaf = [&](uint32_t first, uint32_t count) {
+    auto leaf = [&](uint32_t first, uint32_t count) [[gnu::always_inline]] {
         for (uint32_t k = first; k < first + count; ++k) {
             uint32_t e = g.order[k];
             if (!passes<kFilter>(e)) continue;
@@ -79,23 +79,32 @@ void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
     StackEntry stack[kStackSize];
     int sp = 0;
     uint32_t ni = 0;
+    uint64_t visits = 0;  // counted in a register, added to c once
     for (;;) {
         const Bvh4Node& node = nodes[ni];
-        float tn[4];
+        alignas(16) float tn[4];
         const int mask = r.box.hit4(node, limit_f, tn);
-        c.boxes += 4;
+        ++visits;
         StackEntry next{};
         bool have = mask != 0;
         if (have) {
-            if ((mask & (mask - 1)) == 0) {
-                const int i = std::countr_zero(static_cast<unsigned>(mask));
+            // Nearest child next; the others wait, farthest deepest, with their entry distances
+            // for pruning once a hit shortens the ray. One or two children (the common cases)
+            // need no sorting loop.
+            const int i = std::countr_zero(static_cast<unsigned>(mask));
+            const int rest = mask & (mask - 1);
+            if (rest == 0) {
                 next = {node.first[i], node.count[i], tn[i]};
+            } else if ((rest & (rest - 1)) == 0) {
+                const int j = std::countr_zero(static_cast<unsigned>(rest));
+                const bool swap = tn[j] < tn[i];
+                const int near = swap ? j : i, far = swap ? i : j;
+                stack[sp++] = {node.first[far], node.count[far], tn[far]};
+                next = {node.first[near], node.count[near], tn[near]};
             } else {
-                // Nearest child next; the others wait, farthest deepest, with their entry
-                // distances for pruning once a hit shortens the ray.
                 StackEntry e[4];
                 const int m = entered_children(node, mask, tn, e);
-                for (int j = m - 1; j > 0; --j) stack[sp++] = e[j];
+                for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
                 next = e[0];
             }
         }
@@ -108,7 +117,10 @@ void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
                 leaf(next.first, next.count);
                 limit_f = to_float_up(best.limit);
             }
-            if (sp == 0) return;
+            if (sp == 0) {
+                c.boxes += 4 * visits;
+                return;
+            }
             next = stack[--sp];
             have = next.t <= limit_f * RayBoxTest::kWiden;
         }
@@ -141,23 +153,30 @@ bool any_hit(const Impl& g, const Ray& ray, const RayPre& r, double tmax, Counte
     StackEntry stack[kStackSize];
     int sp = 0;
     uint32_t ni = 0;
+    uint64_t visits = 0;
     for (;;) {
         const Bvh4Node& node = nodes[ni];
-        float tn[4];
+        alignas(16) float tn[4];
         int mask = r.box.hit4(node, limit_f, tn);
-        c.boxes += 4;
+        ++visits;
         for (; mask != 0; mask &= mask - 1) {
             const int i = std::countr_zero(static_cast<unsigned>(mask));
             stack[sp++] = {node.first[i], node.count[i], 0};
         }
         for (;;) {
-            if (sp == 0) return false;
+            if (sp == 0) {
+                c.boxes += 4 * visits;
+                return false;
+            }
             const StackEntry next = stack[--sp];
             if (next.count == 0) {
                 ni = next.first;
                 break;
             }
-            if (leaf(next.first, next.count)) return true;
+            if (leaf(next.first, next.count)) {
+                c.boxes += 4 * visits;
+                return true;
+            }
         }
     }
 }
