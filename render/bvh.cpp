@@ -388,7 +388,7 @@ Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
 
     bvh.nodes = std::move(task.nodes);
     bvh.depth = task.depth;
-    reserve_huge(bvh.order, n);
+    bvh.order.reserve(n);  // becomes Geometry's order: see prefer_huge_pages
     for (uint32_t i = 0; i < n; ++i) bvh.order.push_back(refs[i].id());
     return bvh;
 }
@@ -459,8 +459,9 @@ uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4No
 std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes) {
     std::vector<Bvh4Node> out;
     if (nodes.empty()) return out;
-    // Counted first: the exact size, without a shrinking copy.
-    reserve_huge(out, nodes[0].count > 0 ? 1 : count4(nodes, 0));
+    // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
+    // no huge pages (see prefer_huge_pages).
+    out.reserve(nodes[0].count > 0 ? 1 : count4(nodes, 0));
     if (nodes[0].count > 0) {
         Bvh4Node root{};
         constexpr float kInf = std::numeric_limits<float>::infinity();

@@ -286,7 +286,8 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
     g.xforms.push_back(Transform{});
     Builder b{spec, errors, g, {}, {}, 0, 0, 0};
     // Every buffer at its final size up front: a million-triangle mesh would otherwise copy
-    // them while growing, and fault in fresh pages for each copy.
+    // them while growing, and fault in fresh pages for each copy. Huge pages only for the
+    // temporaries: traversal reads the others (see prefer_huge_pages).
     size_t n_tris = 0, n_verts = 0, n_bounded = 0;
     for (const ShapeSpec& s : spec.shapes) {
         const bool mesh = s.kind == ShapeKind::Mesh && s.mesh;
@@ -294,8 +295,11 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
         n_verts += mesh ? s.mesh->vertices.size() : (s.kind == ShapeKind::Triangle ? 3 : 0);
         n_bounded += mesh ? s.mesh->faces.size() : (s.kind == ShapeKind::Plane ? 0 : 1);
     }
-    reserve_huge(g.tris, n_tris);
-    reserve_huge(g.verts, n_verts);
+    if (use_bvh)
+        reserve_huge(g.tris, n_tris);  // a temporary: replaced by the copy in leaf order below
+    else
+        g.tris.reserve(n_tris);
+    g.verts.reserve(n_verts);
     reserve_huge(b.bounds, n_bounded);
     reserve_huge(b.entries, n_bounded);
     const size_t errors_before = errors.size();
@@ -351,7 +355,7 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
         std::vector<TriPrim> tris;
         std::vector<SpherePrim> spheres;
         std::vector<BoxPrim> boxes;
-        reserve_huge(tris, g.tris.size());
+        tris.reserve(g.tris.size());
         spheres.reserve(g.spheres.size());
         boxes.reserve(g.boxes.size());
         g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
