@@ -216,14 +216,7 @@ std::optional<HitRecord> Geometry::intersect(const Ray& ray, double tmax, RaySta
         break;
     }
     c.flush(stats);
-    if (!best.hit) return std::nullopt;
-    HitRecord h;
-    h.t = best.t;
-    h.prim = best.prim;
-    h.slot = best.slot;
-    h.b1 = best.b1;
-    h.b2 = best.b2;
-    return h;
+    return best.record();
 }
 
 bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter filter) const {

@@ -217,14 +217,7 @@ std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candid
         if (test_entry(g, pre.get(), e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
     }
     c.flush(stats);
-    if (!best.hit) return std::nullopt;
-    HitRecord h;
-    h.t = best.t;
-    h.prim = best.prim;
-    h.slot = best.slot;
-    h.b1 = best.b1;
-    h.b2 = best.b2;
-    return h;
+    return best.record();
 }
 
 }  // namespace wsd::render

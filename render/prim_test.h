@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <optional>
 
 #include "render/geometry_impl.h"
 
@@ -41,6 +43,18 @@ struct Best {
             hit = true;
             limit = next_float_up(t);
         }
+    }
+
+    // The hit as a query returns it, or nullopt.
+    std::optional<HitRecord> record() const {
+        if (!hit) return std::nullopt;
+        HitRecord h;
+        h.t = t;
+        h.prim = prim;
+        h.slot = slot;
+        h.b1 = b1;
+        h.b2 = b2;
+        return h;
     }
 };
 
