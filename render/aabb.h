@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <limits>
 #if defined(__SSE2__)
-#include <xmmintrin.h>
+#include <emmintrin.h>
 #endif
 
 #include "render/math.h"
@@ -73,6 +73,12 @@ struct RayBoxTest {
 #endif
 
     void init(const Vec3& o, const Vec3& d) {
+#if defined(__SSE2__)
+        const __m128d r01 = _mm_div_pd(_mm_set1_pd(1.0), _mm_set_pd(d.y, d.x));  // two at a time
+        const double rec[3] = {_mm_cvtsd_f64(r01), _mm_cvtsd_f64(_mm_unpackhi_pd(r01, r01)), 1.0 / d.z};
+#else
+        const double rec[3] = {1.0 / d.x, 1.0 / d.y, 1.0 / d.z};
+#endif
         for (int a = 0; a < 3; ++a) {
             bool neg = std::signbit(d[a]);
             // The near plane is the lower bound when d > 0: its distance is underestimated by
@@ -80,7 +86,7 @@ struct RayBoxTest {
             float lo = to_float_down(o[a]), hi = to_float_up(o[a]);
             o_near[a] = neg ? lo : hi;
             o_far[a] = neg ? hi : lo;
-            inv[a] = static_cast<float>(1.0 / d[a]);
+            inv[a] = static_cast<float>(rec[a]);
             near_off[a] = (neg ? 12 : 0) + 4 * a;
             far_off[a] = (neg ? 0 : 12) + 4 * a;
 #if defined(__SSE2__)

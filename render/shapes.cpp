@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <utility>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace wsd::render {
 
@@ -14,11 +17,22 @@ RayPre::RayPre(const Ray& r, bool with_box) : o(r.o), d(r.d) {
     kx = kz + 1 == 3 ? 0 : kz + 1;
     ky = kx + 1 == 3 ? 0 : kx + 1;
     if (d[kz] < 0) std::swap(kx, ky);  // keep the winding, so e > 0 means the same side
+    ox = o[kx], oy = o[ky], oz = o[kz];
+    a = glm::dot(d, d);
+#if defined(__SSE2__)
+    // The same IEEE divisions, two at a time.
+    const __m128d q = _mm_div_pd(_mm_set_pd(-d[ky], -d[kx]), _mm_set1_pd(d[kz]));
+    const __m128d rcp = _mm_div_pd(_mm_set1_pd(1.0), _mm_set_pd(a, d[kz]));
+    sx = _mm_cvtsd_f64(q);
+    sy = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
+    sz = _mm_cvtsd_f64(rcp);
+    inv_a = _mm_cvtsd_f64(_mm_unpackhi_pd(rcp, rcp));
+#else
     sx = -d[kx] / d[kz];
     sy = -d[ky] / d[kz];
     sz = 1.0 / d[kz];
-    a = glm::dot(d, d);
     inv_a = 1.0 / a;
+#endif
     if (with_box) box.init(o, d);
 }
 

@@ -6,6 +6,8 @@
 
 #include <cstdint>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "render/aabb.h"
 #include "render/geometry.h"
 #include "render/transform.h"
@@ -17,6 +19,7 @@ struct RayPre {
     Vec3 o, d;
     // Woop: the axis of largest |d| becomes z; x and y are sheared onto the ray.
     int kx = 0, ky = 1, kz = 2;
+    double ox = 0, oy = 0, oz = 0;  // o[kx], o[ky], o[kz]
     double sx = 0, sy = 0, sz = 1;
     double a = 1, inv_a = 1;  // d·d, for spheres
     RayBoxTest box;
@@ -64,17 +67,21 @@ struct PlanePrim {
 [[gnu::always_inline]] inline bool intersect_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2,
                                double limit, double& t_out, double& b1_out, double& b2_out) {
     const int kx = r.kx, ky = r.ky, kz = r.kz;
+    // Components through a pointer: glm's operator[] is a switch on the index.
+    const float* a0 = glm::value_ptr(v0);
+    const float* a1 = glm::value_ptr(v1);
+    const float* a2 = glm::value_ptr(v2);
     // Translate (exact float vertices, one double rounding each), permute, shear. Each vertex
     // is transformed by the same expressions in every triangle that shares it.
-    double p0z = static_cast<double>(v0[kz]) - r.o[kz];
-    double p1z = static_cast<double>(v1[kz]) - r.o[kz];
-    double p2z = static_cast<double>(v2[kz]) - r.o[kz];
-    double x0 = (static_cast<double>(v0[kx]) - r.o[kx]) + opaque(r.sx * p0z);
-    double y0 = (static_cast<double>(v0[ky]) - r.o[ky]) + opaque(r.sy * p0z);
-    double x1 = (static_cast<double>(v1[kx]) - r.o[kx]) + opaque(r.sx * p1z);
-    double y1 = (static_cast<double>(v1[ky]) - r.o[ky]) + opaque(r.sy * p1z);
-    double x2 = (static_cast<double>(v2[kx]) - r.o[kx]) + opaque(r.sx * p2z);
-    double y2 = (static_cast<double>(v2[ky]) - r.o[ky]) + opaque(r.sy * p2z);
+    double p0z = static_cast<double>(a0[kz]) - r.oz;
+    double p1z = static_cast<double>(a1[kz]) - r.oz;
+    double p2z = static_cast<double>(a2[kz]) - r.oz;
+    double x0 = (static_cast<double>(a0[kx]) - r.ox) + opaque(r.sx * p0z);
+    double y0 = (static_cast<double>(a0[ky]) - r.oy) + opaque(r.sy * p0z);
+    double x1 = (static_cast<double>(a1[kx]) - r.ox) + opaque(r.sx * p1z);
+    double y1 = (static_cast<double>(a1[ky]) - r.oy) + opaque(r.sy * p1z);
+    double x2 = (static_cast<double>(a2[kx]) - r.ox) + opaque(r.sx * p2z);
+    double y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * p2z);
 
     // Edge functions; e(p, q) == -e(q, p) bit for bit, so a shared edge splits rays exactly.
     // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
