@@ -20,20 +20,6 @@ namespace {
 
 using namespace detail;
 
-template <int kFilter>
-void test_planes(const Impl& g, const Ray& ray, Best& best, Counters& c) {
-    for (size_t i = 0; i < g.planes.size(); ++i) {
-        const PlanePrim& p = g.planes[i];
-        if constexpr (kFilter != 0) {
-            if ((p.transmissive != 0) != (kFilter == 2)) continue;
-        }
-        ++c.planes;
-        double t;
-        if (intersect_plane(ray.o, ray.d, p, best.limit, t))
-            best.offer(t, p.prim, static_cast<uint32_t>(i), 0, 0);
-    }
-}
-
 struct StackEntry {
     uint32_t first, count;
     float t;
@@ -193,6 +179,11 @@ std::optional<HitRecord> Geometry::intersect(const Ray& ray, double tmax, RaySta
         return std::nullopt;
     }
     if (!(tmax > 0)) return std::nullopt;
+    if (const int s = direction_scale(ray.d); s != 0) {
+        auto hit = intersect(scaled(ray, s), std::ldexp(tmax, -s), stats, filter);
+        if (hit) hit->t = std::ldexp(hit->t, s);
+        return hit;
+    }
     const Impl& g = *impl_;
     if (!g.has_transmissive) {
         if (filter == RayFilter::TransmissiveOnly) return std::nullopt;
@@ -225,6 +216,8 @@ bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter 
         return false;
     }
     if (!(tmax > 0)) return false;
+    if (const int s = direction_scale(ray.d); s != 0)
+        return occluded(scaled(ray, s), std::ldexp(tmax, -s), stats, filter);
     const Impl& g = *impl_;
     if (!g.has_transmissive) {
         if (filter == RayFilter::TransmissiveOnly) return false;

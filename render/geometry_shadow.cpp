@@ -164,6 +164,8 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     }
     if (!(tmax > 0)) return false;
     if (candidates.blocked) return true;
+    if (const int s = direction_scale(ray.d); s != 0)
+        return occluded_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
     const Impl& g = *impl_;
     Counters c;
     bool hit = false;
@@ -200,6 +202,11 @@ std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candid
         return std::nullopt;
     }
     if (!(tmax > 0)) return std::nullopt;
+    if (const int s = direction_scale(ray.d); s != 0) {
+        auto hit = intersect_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
+        if (hit) hit->t = std::ldexp(hit->t, s);
+        return hit;
+    }
     const Impl& g = *impl_;
     Counters c;
     Best best{tmax};

@@ -97,6 +97,16 @@ public:
         return trace(scene_.camera().ray(px, py), Path{key, 0, Vec3(1), -1});
     }
 
+    void camera_samples(const double* px, const double* py, const uint64_t* key, int n,
+                        Color* out) override {
+        Ray rays[4];
+        std::optional<HitRecord> hits[4];
+        for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
+        stats_.camera_rays += uint64_t(n);
+        geom_.intersect_packet(rays, n, kInfinity, stats_, hits);
+        for (int k = 0; k < n; ++k) out[k] = trace_hit(rays[k], hits[k], Path{key[k], 0, Vec3(1), -1});
+    }
+
     Color trace_ray(const Ray& ray, uint64_t key) override {
         ++stats_.camera_rays;
         return trace(ray, Path{key, 0, Vec3(1), -1});
@@ -104,7 +114,11 @@ public:
 
 private:
     Color trace(const Ray& ray, const Path& path) {
-        const auto hit = geom_.intersect(ray, kInfinity, stats_, RayFilter::All);
+        return trace_hit(ray, geom_.intersect(ray, kInfinity, stats_, RayFilter::All), path);
+    }
+
+    // The colour along a ray whose closest hit is known.
+    Color trace_hit(const Ray& ray, const std::optional<HitRecord>& hit, const Path& path) {
         if (!hit) {
             if constexpr (kTransmissive) {
                 if (path.medium >= 0) return background_ * absorb_forever(materials_[path.medium]);

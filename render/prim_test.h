@@ -63,6 +63,21 @@ inline bool ray_is_valid(const Ray& r, double tmax) {
            !std::isnan(tmax);
 }
 
+// The power of two that brings a direction's largest component into [2^-64, 2^64], or 0 when
+// it is there already. Traversal keeps 1/d in floats, which vanish past about 1e38 (every box,
+// even an empty one, would then be entered) and overflow below about 1e-38; scaling by a power
+// of two is exact, and every test is covariant with it, so the answers do not change.
+inline int direction_scale(const Vec3& d) {
+    const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (m >= 0x1p-64 && m <= 0x1p64) return 0;
+    int e = 0;
+    (void)std::frexp(m, &e);
+    return -e;
+}
+inline Ray scaled(const Ray& r, int s) {
+    return {r.o, {std::ldexp(r.d.x, s), std::ldexp(r.d.y, s), std::ldexp(r.d.z, s)}};
+}
+
 inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const Vec3& o) {
     Vec3 c = abs3(s.center);
     double m = std::max({c.x, c.y, c.z}) + s.radius;
@@ -136,6 +151,21 @@ inline bool passes(uint32_t e) {
     } else {
         bool trans = (e & kTransmissiveBit) != 0;
         return trans == (kFilter == 2);
+    }
+}
+
+// Every plane (kept outside the BVH) against the ray, into the running closest hit.
+template <int kFilter>
+void test_planes(const Impl& g, const Ray& ray, Best& best, Counters& c) {
+    for (size_t i = 0; i < g.planes.size(); ++i) {
+        const PlanePrim& p = g.planes[i];
+        if constexpr (kFilter != 0) {
+            if ((p.transmissive != 0) != (kFilter == 2)) continue;
+        }
+        ++c.planes;
+        double t;
+        if (intersect_plane(ray.o, ray.d, p, best.limit, t))
+            best.offer(t, p.prim, static_cast<uint32_t>(i), 0, 0);
     }
 }
 

@@ -63,21 +63,23 @@ public:
           threshold_(scene.settings().aa_threshold) {}
 
     void render(const Region& t) {
+        if (samples_ == 1) {
+            // One ray a pixel: the pixels' centre rays, a 2×2 block at a time (one packet).
+            for_quads(t, 0, [&](int x, int y, const Color& c) { store(x, y, guarded(c)); });
+            return;
+        }
         for (int y = t.y0; y < t.y1; ++y)
             for (int x = t.x0; x < t.x1; ++x) store(x, y, full_pixel(x, y));
     }
 
     // Phase 1 of adaptive supersampling.
     void render_centres(const Region& t) {
-        for (int y = t.y0; y < t.y1; ++y) {
-            for (int x = t.x0; x < t.x1; ++x) {
-                const size_t i = prepass_.index(x, y);
-                const uint64_t key = sample_key(pixel_key(seed_, x, y), kCentreSample);
-                prepass_.centre[i] = guarded(tracer_.camera_sample(x + 0.5, y + 0.5, key));
-                const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
-                prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
-            }
-        }
+        for_quads(t, kCentreSample, [&](int x, int y, const Color& colour) {
+                      const size_t i = prepass_.index(x, y);
+                      prepass_.centre[i] = guarded(colour);
+                      const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
+                      prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
+                  });
     }
 
     // Phase 2: the full grid where the centre value differs from one of its 4 neighbours' by more
@@ -111,20 +113,55 @@ private:
         return Color(0);
     }
 
-    // The box-filtered average of the pixel's camera samples (1 = its centre).
+    // The centre samples (sample index `sample`) of the pixels of `t`, traced a 2×2 block of
+    // pixels at a time as one packet; done(x, y, colour) for each, row by row within a block.
+    template <class Done>
+    void for_quads(const Region& t, uint32_t sample, Done done) {
+        for (int y = t.y0; y < t.y1; y += 2) {
+            for (int x = t.x0; x < t.x1; x += 2) {
+                double px[4], py[4];
+                uint64_t key[4];
+                int xs[4], ys[4], n = 0;
+                for (int dy = 0; dy < 2 && y + dy < t.y1; ++dy) {
+                    for (int dx = 0; dx < 2 && x + dx < t.x1; ++dx) {
+                        xs[n] = x + dx, ys[n] = y + dy;
+                        px[n] = xs[n] + 0.5, py[n] = ys[n] + 0.5;
+                        key[n] = sample_key(pixel_key(seed_, xs[n], ys[n]), sample);
+                        ++n;
+                    }
+                }
+                Color out[4];
+                tracer_.camera_samples(px, py, key, n, out);
+                for (int k = 0; k < n; ++k) done(xs[k], ys[k], out[k]);
+            }
+        }
+    }
+
+    // The box-filtered average of the pixel's camera samples (1 = its centre), traced four
+    // at a time as packets and summed in grid order.
     Color full_pixel(int x, int y) {
         const uint64_t pk = pixel_key(seed_, x, y);
         if (samples_ == 1) return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
         Color sum(0);
+        double px[4], py[4];
+        uint64_t key[4];
+        Color out[4];
+        int n = 0;
+        auto flush = [&] {
+            tracer_.camera_samples(px, py, key, n, out);
+            for (int k = 0; k < n; ++k) sum += guarded(out[k]);
+            n = 0;
+        };
         for (int r = 0; r < grid_.rows; ++r) {
             for (int c = 0; c < grid_.cols; ++c) {
-                const uint64_t key = sample_key(pk, uint32_t(r * grid_.cols + c));
-                const Uniform2 j = camera_jitter(key);
-                const double px = x + (c + j.u) / grid_.cols;
-                const double py = y + (r + j.v) / grid_.rows;
-                sum += guarded(tracer_.camera_sample(px, py, key));
+                key[n] = sample_key(pk, uint32_t(r * grid_.cols + c));
+                const Uniform2 j = camera_jitter(key[n]);
+                px[n] = x + (c + j.u) / grid_.cols;
+                py[n] = y + (r + j.v) / grid_.rows;
+                if (++n == 4) flush();
             }
         }
+        if (n > 0) flush();
         return sum / double(samples_);
     }
 

@@ -123,3 +123,46 @@ TEST_CASE("R22: axis-aligned rays need no more traversal work than random rays")
     CHECK(axis_nodes < 3 * random_nodes);
     CHECK(axis_tris < 3 * random_tris);
 }
+
+TEST_CASE("R65: directions of any magnitude: exactly the unit-scale answers, scaled") {
+    // A float 1/d vanishes for |d| beyond about 1e38 and overflows below about 1e-38; before the
+    // fix a direction of length 1e300 made every box, even an empty one, look entered and the
+    // traversal overran its stack. Scaling a direction by 2^k must scale t by 2^-k exactly and
+    // change nothing else, in every query.
+    Rng rng(65);
+    SceneSpec spec = random_scene(rng, 150, 1);
+    spec.shapes.push_back(mesh(icosphere(3, 0.5f, {0.2, 0.1, -0.3})));
+    spec.shapes.push_back(plane(rng.unit_vector(), 0.3));
+    auto g = build_ok(spec);
+    REQUIRE(g);
+    int hits = 0;
+    for (int i = 0; i < ray_budget(4000); ++i) {
+        const Ray r = random_ray(rng, 1);
+        const auto h = hit_of(*g, r);
+        RayStats stats;
+        const bool occ = g->occluded(r, 0.5, stats, RayFilter::All);
+        hits += h ? 1 : 0;
+        for (int k : {-1070, -1000, -300, -70, 70, 300, 1000}) {
+            INFO("ray " << i << " scaled by 2^" << k);
+            const Ray s{r.o, {std::ldexp(r.d.x, k), std::ldexp(r.d.y, k), std::ldexp(r.d.z, k)}};
+            if (!is_finite(s.d) || std::min({std::abs(s.d.x), std::abs(s.d.y), std::abs(s.d.z)}) <
+                                       std::numeric_limits<double>::min())
+                continue;  // overflowed, or a component lost bits: not the same ray
+            const auto hs = hit_of(*g, s);
+            REQUIRE(hs.has_value() == h.has_value());
+            if (h) {
+                REQUIRE(hs->prim == h->prim);
+                REQUIRE(hs->t == std::ldexp(h->t, -k));
+                REQUIRE(hs->b1 == h->b1);
+                REQUIRE(hs->b2 == h->b2);
+            }
+            REQUIRE(g->occluded(s, std::ldexp(0.5, -k), stats, RayFilter::All) == occ);
+        }
+        // Not a power of two: no crash, and the same primitive unless the rounding of d moved
+        // the ray (a hit at all is the check here).
+        const Ray huge{r.o, r.d * 1e300}, tiny{r.o, r.d * 1e-300};
+        CHECK(hit_of(*g, huge).has_value() == h.has_value());
+        CHECK(hit_of(*g, tiny).has_value() == h.has_value());
+    }
+    CHECK(hits > ray_budget(4000) / 4);
+}

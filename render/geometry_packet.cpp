@@ -1,0 +1,231 @@
+// Closest hits for a packet of up to four rays that start close together and point the same way
+// (camera rays through one pixel or neighbouring pixels): one walk of the BVH for all of them.
+// At each node the four child boxes are tested against the four rays, one SIMD lane a ray, with
+// exactly the arithmetic of RayBoxTest::hit4; a leaf's primitives are tested, with the
+// single-ray test, for the rays that entered it. Each ray gets the hit intersect() returns:
+// a lane enters every box that intersect() would enter for that ray (same slab values, a limit
+// never below its own), and the closest hit with ties to the lowest id does not depend on the
+// order primitives are tested in. Rays whose directions differ in sign on some axis, or that the
+// single-ray path would reject, are traced one by one instead.
+#include <algorithm>
+#include <bit>
+
+#include "render/geometry_impl.h"
+#include "render/prim_test.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace wsd::render {
+
+#if defined(__SSE2__)
+namespace {
+
+using namespace detail;
+
+// A subtree waiting on the stack: the packet's entry distance (the least over its rays) and,
+// for a leaf, where its box is (child `lane` of node `parent`), so that each ray's own slab
+// test can be made when the leaf is reached.
+struct PacketEntry {
+    uint32_t first, count;
+    float t;
+    uint32_t parent, lane;
+};
+constexpr int kPacketStack = 3 * kMaxBvhDepth + 1;
+
+struct Packet {
+    const RayPre* pre[4];
+    // Per ray (lanes = rays): RayBoxTest's constants.
+    __m128 o_near[3], o_far[3], inv[3];
+    // For the whole packet (broadcast): origins and inverse directions that bound every ray's
+    // slab distances (see bound4).
+    __m128 po_near[3], po_far[3], inv_lo[3], inv_hi[3];
+    int near_off[3], far_off[3];
+
+    // Ray by ray (lanes = rays): hit4's operations for child i of the node at `base`, so a lane
+    // is set exactly when RayBoxTest::hit4 of that ray would set bit i.
+    int rays_in(const float* base, int i, __m128 t_limit) const {
+        __m128 tn = _mm_setzero_ps(), tf = t_limit;
+        for (int a = 0; a < 3; ++a) {
+            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(base[near_off[a] + i]), o_near[a]), inv[a]);
+            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(base[far_off[a] + i]), o_far[a]), inv[a]);
+            tn = _mm_max_ps(t0, tn);
+            tf = _mm_min_ps(t1, tf);
+        }
+        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))));
+    }
+
+    // Child by child (lanes = children): bit i is set when some ray may enter child i within
+    // its limit (t_limit is the largest). Interval arithmetic over the rays: the plane offset
+    // is taken from the origin that makes it smallest (near) or largest (far), and rounded
+    // products are monotone in each factor, so t_entry[i] is at most, and the exit bound at
+    // least, what any ray's own test computes. Finite non-zero inverses only (no NaN here).
+    int bound4(const Bvh4Node& node, float t_limit, float* t_entry) const {
+        const float* base = &node.lo[0][0];
+        __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
+        for (int a = 0; a < 3; ++a) {
+            const __m128 dn = _mm_sub_ps(_mm_load_ps(base + near_off[a]), po_near[a]);
+            const __m128 df = _mm_sub_ps(_mm_load_ps(base + far_off[a]), po_far[a]);
+            const __m128 t0 = _mm_min_ps(_mm_mul_ps(dn, inv_lo[a]), _mm_mul_ps(dn, inv_hi[a]));
+            const __m128 t1 = _mm_max_ps(_mm_mul_ps(df, inv_lo[a]), _mm_mul_ps(df, inv_hi[a]));
+            tn = _mm_max_ps(t0, tn);
+            tf = _mm_min_ps(t1, tf);
+        }
+        _mm_storeu_ps(t_entry, tn);
+        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))));
+    }
+};
+
+void closest_hit_packet(const Impl& g, const Packet& p, Best* best, int live, Counters& c) {
+    alignas(16) float lim[4];
+    for (int k = 0; k < 4; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
+    __m128 limit = _mm_load_ps(lim);
+    float limit_max = std::max(std::max(lim[0], lim[1]), std::max(lim[2], lim[3]));
+    const Bvh4Node* nodes = g.nodes.data();
+    uint64_t visits = 0, leaf_boxes = 0;
+    auto leaf = [&](const PacketEntry& e) {
+        int lanes = p.rays_in(&nodes[e.parent].lo[0][0], static_cast<int>(e.lane), limit);
+        ++leaf_boxes;
+        if (lanes == 0) return;
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int k = std::countr_zero(static_cast<unsigned>(lanes));
+            Best& b = best[k];
+            for (uint32_t j = e.first; j < e.first + e.count; ++j) {
+                const uint32_t entry = g.order[j];
+                double t, b1, b2;
+                uint32_t prim;
+                if (test_entry(g, *p.pre[k], entry, b.limit, c, t, prim, b1, b2))
+                    b.offer(t, prim, entry & kSlotMask, b1, b2);
+            }
+            lim[k] = to_float_up(b.limit);
+        }
+        limit = _mm_load_ps(lim);
+        limit_max = std::max(std::max(lim[0], lim[1]), std::max(lim[2], lim[3]));
+    };
+    PacketEntry stack[kPacketStack];
+    int sp = 0;
+    uint32_t ni = 0;
+    for (;;) {
+        const Bvh4Node& node = nodes[ni];
+        alignas(16) float tn[4];
+        int mask = p.bound4(node, limit_max, tn);
+        ++visits;
+        // Entered children, nearest first; the others wait, farthest deepest.
+        PacketEntry e[4];
+        int m = 0;
+        for (; mask != 0; mask &= mask - 1) {
+            const int i = std::countr_zero(static_cast<unsigned>(mask));
+            PacketEntry x{node.first[i], node.count[i], tn[i], ni, static_cast<uint32_t>(i)};
+            int j = m++;
+            while (j > 0 && e[j - 1].t > x.t) {
+                e[j] = e[j - 1];
+                --j;
+            }
+            e[j] = x;
+        }
+        bool have = m > 0;
+        PacketEntry next{};
+        if (have) {
+            for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
+            next = e[0];
+        }
+        for (;;) {
+            if (have) {
+                if (next.count == 0) {
+                    ni = next.first;
+                    break;
+                }
+                leaf(next);
+            }
+            if (sp == 0) {
+                c.boxes += 4 * (visits + leaf_boxes);
+                return;
+            }
+            next = stack[--sp];
+            have = next.t <= limit_max * RayBoxTest::kWiden;
+        }
+    }
+}
+
+// All four lanes set to the least (most) of x's lanes.
+inline __m128 all_min(__m128 x) {
+    x = _mm_min_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_min_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(2, 3, 0, 1)));
+}
+inline __m128 all_max(__m128 x) {
+    x = _mm_max_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_max_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(2, 3, 0, 1)));
+}
+
+// The packet's constants from its rays'. False unless on every axis every inverse direction is
+// finite, non-zero and of one sign: then no slab distance is NaN and one plane is near for all.
+bool make_packet(const RayPre* pre, Packet& p) {
+    const __m128 sign_bit = _mm_set1_ps(-0.0f);
+    const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    for (int k = 0; k < 4; ++k) p.pre[k] = &pre[k];
+    for (int a = 0; a < 3; ++a) {
+        const __m128 iv = _mm_setr_ps(pre[0].box.inv[a], pre[1].box.inv[a], pre[2].box.inv[a],
+                                      pre[3].box.inv[a]);
+        const __m128 mag = _mm_andnot_ps(sign_bit, iv);
+        const int signs = _mm_movemask_ps(iv);
+        const int usable = _mm_movemask_ps(
+            _mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps())));
+        if (usable != 15 || (signs != 0 && signs != 15)) return false;
+        const __m128 on = _mm_setr_ps(pre[0].box.o_near[a], pre[1].box.o_near[a],
+                                      pre[2].box.o_near[a], pre[3].box.o_near[a]);
+        const __m128 of = _mm_setr_ps(pre[0].box.o_far[a], pre[1].box.o_far[a], pre[2].box.o_far[a],
+                                      pre[3].box.o_far[a]);
+        p.o_near[a] = on, p.o_far[a] = of, p.inv[a] = iv;
+        p.near_off[a] = pre[0].box.near_off[a];
+        p.far_off[a] = pre[0].box.far_off[a];
+        // The near plane's offset (plane − origin) is least with the largest origin when the
+        // rays go up this axis, and a negative inverse turns the greatest offset into the least
+        // distance; the far plane's the other way round.
+        const bool up = signs == 0;
+        p.po_near[a] = up ? all_max(on) : all_min(on);
+        p.po_far[a] = up ? all_min(of) : all_max(of);
+        p.inv_lo[a] = all_min(iv);
+        p.inv_hi[a] = all_max(iv);
+    }
+    return true;
+}
+
+void trace_packet(const Impl& g, const Packet& p, const Ray* rays, int n, double tmax,
+                  RayStats& stats, std::optional<HitRecord>* out) {
+    Best best[4] = {Best{tmax}, Best{tmax}, Best{tmax}, Best{tmax}};
+    Counters c;
+    if (!g.planes.empty())
+        for (int k = 0; k < n; ++k) test_planes<0>(g, rays[k], best[k], c);
+    closest_hit_packet(g, p, best, (1 << n) - 1, c);
+    c.flush(stats);
+    for (int k = 0; k < n; ++k) out[k] = best[k].record();
+}
+
+}  // namespace
+#endif
+
+void Geometry::intersect_packet(const Ray* rays, int n, double tmax, RayStats& stats,
+                                std::optional<HitRecord>* out) const {
+    const Impl& g = *impl_;
+    bool packet = n >= 2 && n <= 4 && !g.nodes.empty() && tmax > 0;
+#if !defined(__SSE2__)
+    packet = false;
+#endif
+    for (int k = 0; k < n && packet; ++k) packet = ray_is_valid(rays[k], tmax);
+#if defined(__SSE2__)
+    if (packet) {
+        // Lanes past n repeat the last ray and stay dead (limit −1: no box is entered).
+        const RayPre pre[4] = {RayPre(rays[0]), RayPre(rays[std::min(1, n - 1)]),
+                               RayPre(rays[std::min(2, n - 1)]), RayPre(rays[std::min(3, n - 1)])};
+        Packet p;
+        if (make_packet(pre, p)) {
+            trace_packet(g, p, rays, n, tmax, stats, out);
+            return;
+        }
+    }
+#endif
+    for (int k = 0; k < n; ++k) out[k] = intersect(rays[k], tmax, stats);
+}
+
+}  // namespace wsd::render

@@ -1,0 +1,159 @@
+// Packets (Geometry::intersect_packet): up to four rays traced in one walk of the BVH must get
+// exactly the hits intersect() gives each of them — same primitive, t, slot and barycentrics —
+// whether they share an origin (camera rays), start at different points, point in mixed
+// directions (traced one by one), have zero or tiny direction components, or are invalid.
+#include <catch2/catch.hpp>
+
+#include <optional>
+
+#include "geometry_test_util.h"
+
+using namespace wsd::render;
+using namespace wsd::render::test;
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A closed UV sphere mesh (shared vertices) of radius r around c.
+std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, Vec3 c, double r) {
+    auto m = std::make_shared<MeshData>();
+    auto vert = [&](double theta, double phi) {
+        return Vec3f(Vec3(c.x + r * std::sin(theta) * std::cos(phi), c.y + r * std::cos(theta),
+                          c.z + r * std::sin(theta) * std::sin(phi)));
+    };
+    m->vertices.push_back(vert(0, 0));
+    for (int i = 1; i < stacks; ++i)
+        for (int j = 0; j < slices; ++j) m->vertices.push_back(vert(kPi * i / stacks, 2 * kPi * j / slices));
+    m->vertices.push_back(vert(kPi, 0));
+    auto ring = [slices](int i, int j) { return static_cast<unsigned>(1 + (i - 1) * slices + (j % slices)); };
+    const unsigned bottom = static_cast<unsigned>(m->vertices.size() - 1);
+    for (int j = 0; j < slices; ++j) m->faces.push_back({0u, ring(1, j + 1), ring(1, j)});
+    for (int i = 1; i < stacks - 1; ++i)
+        for (int j = 0; j < slices; ++j) {
+            m->faces.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
+            m->faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
+        }
+    for (int j = 0; j < slices; ++j) m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
+    return m;
+}
+
+// Requires the packet's answers to equal the single-ray answers; returns how many rays hit.
+int require_same_as_single(const Geometry& g, const Ray* rays, int n, double tmax) {
+    RayStats packet_stats, single_stats;
+    std::optional<HitRecord> out[4];
+    g.intersect_packet(rays, n, tmax, packet_stats, out);
+    int hits = 0;
+    for (int k = 0; k < n; ++k) {
+        INFO("lane " << k << " of " << n);
+        auto h = g.intersect(rays[k], tmax, single_stats);
+        REQUIRE(out[k].has_value() == h.has_value());
+        if (!h) continue;
+        ++hits;
+        REQUIRE(out[k]->prim == h->prim);
+        REQUIRE(out[k]->slot == h->slot);
+        REQUIRE(out[k]->t == h->t);
+        REQUIRE(out[k]->b1 == h->b1);
+        REQUIRE(out[k]->b2 == h->b2);
+    }
+    REQUIRE(packet_stats.rejected_rays == single_stats.rejected_rays);
+    return hits;
+}
+
+// Four rays around a base ray: a shared origin (camera) or origins spread by `spread`, and
+// directions turned by up to `turn` (relative).
+void make_packet(Rng& rng, const Ray& base, double spread, double turn, Ray* out) {
+    for (int k = 0; k < 4; ++k) {
+        Vec3 o = base.o + spread * rng.in_box(Vec3(-1), Vec3(1));
+        Vec3 d = base.d + turn * glm::length(base.d) * rng.in_box(Vec3(-1), Vec3(1));
+        out[k] = {o, d};
+    }
+}
+
+}  // namespace
+
+TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
+    Rng rng(20261125);
+    const int scenes = 30, packets = ray_budget(40000) / scenes;
+    int hits = 0, total = 0;
+    for (int s = 0; s < scenes; ++s) {
+        const double size = rng.log_uniform(-3, 3);
+        SceneSpec spec = random_scene(rng, rng.integer(1, 300), size);
+        if (s % 3 == 0) spec.shapes.push_back(mesh(uv_sphere(40, 21, rng.in_box(Vec3(-size), Vec3(size)), 0.4 * size)));
+        if (s % 5 == 0) spec.shapes.push_back(plane(rng.unit_vector(), rng.uniform(-size, size)));
+        auto g = build_ok(spec, true);
+        REQUIRE(g);
+        INFO("scene " << s << " size " << size);
+        for (int i = 0; i < packets; ++i) {
+            Ray rays[4];
+            const Ray base = random_ray(rng, size);
+            switch (i % 4) {
+            case 0: make_packet(rng, base, 0, rng.log_uniform(-6, -1), rays); break;  // camera
+            case 1: make_packet(rng, base, size * rng.log_uniform(-6, -1), rng.log_uniform(-6, -1), rays); break;
+            case 2: make_packet(rng, base, size * rng.uniform(0, 1), rng.uniform(0, 0.5), rays); break;
+            default:
+                for (Ray& r : rays) r = random_ray(rng, size);  // mixed directions
+                break;
+            }
+            const int n = rng.integer(1, 4);
+            const double tmax = rng.uniform() < 0.7 ? kInf : rng.uniform(0, 2 * size);
+            hits += require_same_as_single(*g, rays, n, tmax);
+            total += n;
+        }
+    }
+    // The comparison means something only if many rays hit.
+    CHECK(hits > total / 5);
+}
+
+TEST_CASE("packets from a camera inside a dense mesh, and through its silhouette") {
+    SceneSpec spec = scene_of({mesh(uv_sphere(200, 101, {0, 0, 0}, 1))});
+    auto g = build_ok(spec, true);
+    REQUIRE(g);
+    Rng rng(5);
+    int hits = 0;
+    for (int i = 0; i < ray_budget(20000); ++i) {
+        // Outside looking at it (many rays graze the silhouette), or inside looking out.
+        const bool inside = i % 2 == 1;
+        const Vec3 eye = inside ? 0.5 * rng.in_box(Vec3(-1), Vec3(1)) : 3.0 * rng.unit_vector();
+        const Vec3 aim = inside ? rng.unit_vector() : rng.in_box(Vec3(-1.2), Vec3(1.2)) - eye;
+        Ray rays[4];
+        make_packet(rng, {eye, aim}, 0, rng.log_uniform(-5, -2), rays);
+        hits += require_same_as_single(*g, rays, 4, kInf);
+    }
+    CHECK(hits > ray_budget(20000) * 2);
+}
+
+TEST_CASE("packets with zero, tiny, huge or invalid direction components fall back and agree") {
+    Rng rng(9);
+    SceneSpec spec = random_scene(rng, 200, 1);
+    auto g = build_ok(spec, true);
+    REQUIRE(g);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (int i = 0; i < 2000; ++i) {
+        Ray rays[4];
+        make_packet(rng, random_ray(rng, 1), 0, 1e-3, rays);
+        const int lane = rng.integer(0, 3), axis = rng.integer(0, 2);
+        switch (i % 6) {
+        case 0: rays[lane].d[axis] = 0; break;
+        case 1: rays[lane].d[axis] = -0.0; break;
+        case 2: rays[lane].d[axis] = 1e-300; break;   // 1/d overflows a float
+        case 3: rays[lane].d *= 1e300; break;         // 1/d underflows to 0
+        case 4: rays[lane].d[axis] = nan; break;      // rejected by both
+        default: rays[lane].o[axis] = std::numeric_limits<double>::infinity(); break;
+        }
+        require_same_as_single(*g, rays, 4, kInf);
+        require_same_as_single(*g, rays, 4, -1);  // nothing within a negative limit
+    }
+}
+
+TEST_CASE("a packet without a BVH is traced ray by ray with the same answers") {
+    Rng rng(3);
+    SceneSpec spec = random_scene(rng, 50, 1);
+    auto g = build_ok(spec, false);
+    REQUIRE(g);
+    for (int i = 0; i < 500; ++i) {
+        Ray rays[4];
+        make_packet(rng, random_ray(rng, 1), 0, 1e-2, rays);
+        require_same_as_single(*g, rays, rng.integer(1, 4), kInf);
+    }
+}
