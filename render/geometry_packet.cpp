@@ -158,35 +158,38 @@ inline __m128 all_max(__m128 x) {
     return _mm_max_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(2, 3, 0, 1)));
 }
 
-// The packet's constants from its rays'. False unless on every axis every inverse direction is
-// finite, non-zero and of one sign: then no slab distance is NaN and one plane is near for all.
-bool make_packet(const RayPre* pre, Packet& p) {
+// The packet's constants from its rays (lanes past n repeat the last one). False unless on
+// every axis all directions have one sign and every inverse direction is a finite, non-zero
+// float: then no slab distance is NaN and one plane is near for all.
+bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet& p) {
+    Vec3 o[4], d[4];
+    for (int k = 0; k < 4; ++k) {
+        p.pre[k] = &pre[k];
+        o[k] = rays[std::min(k, n - 1)].o;
+        d[k] = rays[std::min(k, n - 1)].d;
+    }
+    bool neg[3];
+    for (int a = 0; a < 3; ++a) {
+        neg[a] = std::signbit(d[0][a]);
+        for (int k = 1; k < 4; ++k)
+            if (std::signbit(d[k][a]) != neg[a]) return false;
+    }
+    slab_constants4(o, d, neg, p.o_near, p.o_far, p.inv);
     const __m128 sign_bit = _mm_set1_ps(-0.0f);
     const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-    for (int k = 0; k < 4; ++k) p.pre[k] = &pre[k];
     for (int a = 0; a < 3; ++a) {
-        const __m128 iv = _mm_setr_ps(pre[0].box.inv[a], pre[1].box.inv[a], pre[2].box.inv[a],
-                                      pre[3].box.inv[a]);
-        const __m128 mag = _mm_andnot_ps(sign_bit, iv);
-        const int signs = _mm_movemask_ps(iv);
-        const int usable = _mm_movemask_ps(
-            _mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps())));
-        if (usable != 15 || (signs != 0 && signs != 15)) return false;
-        const __m128 on = _mm_setr_ps(pre[0].box.o_near[a], pre[1].box.o_near[a],
-                                      pre[2].box.o_near[a], pre[3].box.o_near[a]);
-        const __m128 of = _mm_setr_ps(pre[0].box.o_far[a], pre[1].box.o_far[a], pre[2].box.o_far[a],
-                                      pre[3].box.o_far[a]);
-        p.o_near[a] = on, p.o_far[a] = of, p.inv[a] = iv;
-        p.near_off[a] = pre[0].box.near_off[a];
-        p.far_off[a] = pre[0].box.far_off[a];
+        const __m128 mag = _mm_andnot_ps(sign_bit, p.inv[a]);
+        if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) != 15)
+            return false;
+        p.near_off[a] = (neg[a] ? 12 : 0) + 4 * a;
+        p.far_off[a] = (neg[a] ? 0 : 12) + 4 * a;
         // The near plane's offset (plane − origin) is least with the largest origin when the
         // rays go up this axis, and a negative inverse turns the greatest offset into the least
         // distance; the far plane's the other way round.
-        const bool up = signs == 0;
-        p.po_near[a] = up ? all_max(on) : all_min(on);
-        p.po_far[a] = up ? all_min(of) : all_max(of);
-        p.inv_lo[a] = all_min(iv);
-        p.inv_hi[a] = all_max(iv);
+        p.po_near[a] = neg[a] ? all_min(p.o_near[a]) : all_max(p.o_near[a]);
+        p.po_far[a] = neg[a] ? all_max(p.o_far[a]) : all_min(p.o_far[a]);
+        p.inv_lo[a] = all_min(p.inv[a]);
+        p.inv_hi[a] = all_max(p.inv[a]);
     }
     return true;
 }
@@ -212,14 +215,18 @@ void Geometry::intersect_packet(const Ray* rays, int n, double tmax, RayStats& s
 #if !defined(__SSE2__)
     packet = false;
 #endif
-    for (int k = 0; k < n && packet; ++k) packet = ray_is_valid(rays[k], tmax);
+    // Directions far from unit length are traced one by one (intersect() rescales them).
+    for (int k = 0; k < n && packet; ++k)
+        packet = ray_is_valid(rays[k], tmax) && direction_scale(rays[k].d) == 0;
 #if defined(__SSE2__)
     if (packet) {
-        // Lanes past n repeat the last ray and stay dead (limit −1: no box is entered).
-        const RayPre pre[4] = {RayPre(rays[0]), RayPre(rays[std::min(1, n - 1)]),
-                               RayPre(rays[std::min(2, n - 1)]), RayPre(rays[std::min(3, n - 1)])};
+        // Lanes past n repeat the last ray and stay dead (limit −1: no box is entered). The
+        // slab constants are made for all four rays at once (make_packet), not by RayPre.
+        const RayPre pre[4] = {RayPre(rays[0], false), RayPre(rays[std::min(1, n - 1)], false),
+                               RayPre(rays[std::min(2, n - 1)], false),
+                               RayPre(rays[std::min(3, n - 1)], false)};
         Packet p;
-        if (make_packet(pre, p)) {
+        if (make_packet(rays, n, pre, p)) {
             trace_packet(g, p, rays, n, tmax, stats, out);
             return;
         }

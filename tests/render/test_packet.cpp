@@ -4,9 +4,12 @@
 // directions (traced one by one), have zero or tiny direction components, or are invalid.
 #include <catch2/catch.hpp>
 
+#include <bit>
+#include <iterator>
 #include <optional>
 
 #include "geometry_test_util.h"
+#include "render/aabb.h"
 
 using namespace wsd::render;
 using namespace wsd::render::test;
@@ -157,3 +160,50 @@ TEST_CASE("a packet without a BVH is traced ray by ray with the same answers") {
         require_same_as_single(*g, rays, rng.integer(1, 4), kInf);
     }
 }
+
+#if defined(__SSE2__)
+TEST_CASE("a packet's slab constants are RayBoxTest's, bit for bit") {
+    // slab_constants4 rounds origins up and down without branches; it must agree with the
+    // scalar to_float_up/down (and 1/d) for origins that round either way, floats exactly, ±0,
+    // values beyond the float range and tiny ones.
+    Rng rng(41);
+    const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-40, -1e-40, 1e-300, -1e-300,
+                               3.4028235677973366e38, -3.4028235677973366e38, 1e39, -1e39, 1e300, -1e300,
+                               16777217.0, -16777217.0};
+    auto pick = [&]() -> double {
+        switch (rng.integer(0, 3)) {
+        case 0: return specials[rng.integer(0, int(std::size(specials)) - 1)];
+        case 1: return static_cast<double>(static_cast<float>(rng.uniform(-10, 10)));  // a float
+        default: return rng.uniform(-1, 1) * rng.log_uniform(-45, 45);
+        }
+    };
+    for (int i = 0; i < ray_budget(20000); ++i) {
+        Vec3 o[4], d[4];
+        bool neg[3];
+        for (int a = 0; a < 3; ++a) neg[a] = rng.uniform() < 0.5;
+        for (int k = 0; k < 4; ++k) {
+            for (int a = 0; a < 3; ++a) {
+                o[k][a] = pick();
+                const double m = std::abs(pick());
+                d[k][a] = neg[a] ? -m : m;
+            }
+        }
+        __m128 o_near[3], o_far[3], inv[3];
+        slab_constants4(o, d, neg, o_near, o_far, inv);
+        for (int k = 0; k < 4; ++k) {
+            RayBoxTest slabs;
+            slabs.init(o[k], d[k]);
+            for (int a = 0; a < 3; ++a) {
+                alignas(16) float on[4], of[4], iv[4];
+                _mm_store_ps(on, o_near[a]);
+                _mm_store_ps(of, o_far[a]);
+                _mm_store_ps(iv, inv[a]);
+                INFO("o " << o[k][a] << " d " << d[k][a]);
+                REQUIRE(std::bit_cast<uint32_t>(on[k]) == std::bit_cast<uint32_t>(slabs.o_near[a]));
+                REQUIRE(std::bit_cast<uint32_t>(of[k]) == std::bit_cast<uint32_t>(slabs.o_far[a]));
+                REQUIRE(std::bit_cast<uint32_t>(iv[k]) == std::bit_cast<uint32_t>(slabs.inv[a]));
+            }
+        }
+    }
+}
+#endif
