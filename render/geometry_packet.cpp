@@ -25,14 +25,16 @@ namespace {
 using namespace detail;
 
 // A subtree waiting on the stack: the packet's entry distance (the least over its rays) and,
-// for a leaf, where its box is (child `lane` of node `parent`), so that each ray's own slab
-// test can be made when the leaf is reached.
+// for a leaf, where its box is (child `box & 3` of node `box >> 2`), so that each ray's own
+// slab test can be made when the leaf is reached.
 struct PacketEntry {
     uint32_t first, count;
     float t;
-    uint32_t parent, lane;
+    uint32_t box;
 };
 constexpr int kPacketStack = 3 * kMaxBvhDepth + 1;
+// Fewer nodes than primitives, so a node index times 4 fits in 32 bits.
+static_assert(kMaxPrimitives <= (size_t{1} << 30));
 
 struct Packet {
     const RayPre* pre[4];
@@ -85,20 +87,36 @@ void closest_hit_packet(const Impl& g, const Packet& p, Best* best, int live, Co
     const Bvh4Node* nodes = g.nodes.data();
     uint64_t visits = 0, leaf_boxes = 0;
     auto leaf = [&](const PacketEntry& e) {
-        int lanes = p.rays_in(&nodes[e.parent].lo[0][0], static_cast<int>(e.lane), limit);
+        int lanes = p.rays_in(&nodes[e.box >> 2].lo[0][0], static_cast<int>(e.box & 3), limit);
         ++leaf_boxes;
         if (lanes == 0) return;
+        // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
+        // fetched once. Each ray still meets the primitives in order (not that it matters: the
+        // closest hit with ties to the lowest id does not depend on the order).
+        for (uint32_t j = e.first; j < e.first + e.count; ++j) {
+            const uint32_t entry = g.order[j];
+            const uint32_t slot = entry & kSlotMask;
+            double t, b1, b2;
+            if (((entry >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle)) {
+                const TriPrim& tri = g.tris[slot];
+                const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
+                for (int l = lanes; l != 0; l &= l - 1) {
+                    const int k = std::countr_zero(static_cast<unsigned>(l));
+                    if (test_triangle(*p.pre[k], v0, v1, v2, best[k].limit, c, t, b1, b2))
+                        best[k].offer(t, tri.prim, slot, b1, b2);
+                }
+            } else {
+                for (int l = lanes; l != 0; l &= l - 1) {
+                    const int k = std::countr_zero(static_cast<unsigned>(l));
+                    uint32_t prim;
+                    if (test_entry(g, *p.pre[k], entry, best[k].limit, c, t, prim, b1, b2))
+                        best[k].offer(t, prim, slot, b1, b2);
+                }
+            }
+        }
         for (; lanes != 0; lanes &= lanes - 1) {
             const int k = std::countr_zero(static_cast<unsigned>(lanes));
-            Best& b = best[k];
-            for (uint32_t j = e.first; j < e.first + e.count; ++j) {
-                const uint32_t entry = g.order[j];
-                double t, b1, b2;
-                uint32_t prim;
-                if (test_entry(g, *p.pre[k], entry, b.limit, c, t, prim, b1, b2))
-                    b.offer(t, prim, entry & kSlotMask, b1, b2);
-            }
-            lim[k] = to_float_up(b.limit);
+            lim[k] = to_float_up(best[k].limit);
         }
         limit = _mm_load_ps(lim);
         limit_max = std::max(std::max(lim[0], lim[1]), std::max(lim[2], lim[3]));
@@ -116,7 +134,7 @@ void closest_hit_packet(const Impl& g, const Packet& p, Best* best, int live, Co
         int m = 0;
         for (; mask != 0; mask &= mask - 1) {
             const int i = std::countr_zero(static_cast<unsigned>(mask));
-            PacketEntry x{node.first[i], node.count[i], tn[i], ni, static_cast<uint32_t>(i)};
+            PacketEntry x{node.first[i], node.count[i], tn[i], ni << 2 | static_cast<uint32_t>(i)};
             int j = m++;
             while (j > 0 && e[j - 1].t > x.t) {
                 e[j] = e[j - 1];

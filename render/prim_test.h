@@ -84,6 +84,16 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
 }
 
+// A triangle whose vertices are at hand, counted.
+[[gnu::always_inline]] inline bool test_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
+                                                 const Vec3f& v2, double limit, Counters& c, double& t,
+                                                 double& b1, double& b2) {
+    ++c.tri_tests;
+    if (!intersect_triangle(r, v0, v1, v2, limit, t, b1, b2)) return false;
+    ++c.tri_hits;
+    return true;
+}
+
 // One primitive test; fills t, slot-specific parameters and the canonical id on a hit.
 [[gnu::always_inline]] inline bool test_entry(const Impl& g, const RayPre& r, uint32_t e, double limit,
                                               Counters& c, double& t, uint32_t& prim, double& b1,
@@ -92,11 +102,9 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     switch ((e >> kKindShift) & 3u) {
     case 0: {
         const TriPrim& tri = g.tris[slot];
-        ++c.tri_tests;
-        if (!intersect_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit,
-                                t, b1, b2))
+        if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, t,
+                           b1, b2))
             return false;
-        ++c.tri_hits;
         prim = tri.prim;
         return true;
     }
