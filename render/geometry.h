@@ -84,9 +84,11 @@ public:
                                        RayFilter filter = RayFilter::All) const;
     bool occluded(const Ray& ray, double tmax, RayStats& stats,
                   RayFilter filter = RayFilter::OpaqueOnly) const;
-    // intersect(rays[k], tmax, stats) for k < n ≤ 4, walking the BVH once for all of them when
-    // they point the same way (every direction component of one sign): camera rays through a
-    // pixel or through neighbouring pixels. The same hits, bit for bit, as n single queries.
+    // intersect(rays[k], tmax, stats) for k < n ≤ kMaxPacket, walking the BVH once for all of
+    // them when they point the same way (every direction component of one sign): camera rays
+    // through a pixel or through neighbouring pixels. The same hits, bit for bit, as n single
+    // queries.
+    static constexpr int kMaxPacket = 16;
     void intersect_packet(const Ray* rays, int n, double tmax, RayStats& stats,
                           std::optional<HitRecord>* out) const;
     SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;

@@ -1,12 +1,13 @@
-// Closest hits for a packet of up to four rays that start close together and point the same way
-// (camera rays through one pixel or neighbouring pixels): one walk of the BVH for all of them.
-// At each node the four child boxes are tested against the four rays, one SIMD lane a ray, with
-// exactly the arithmetic of RayBoxTest::hit4; a leaf's primitives are tested, with the
-// single-ray test, for the rays that entered it. Each ray gets the hit intersect() returns:
-// a lane enters every box that intersect() would enter for that ray (same slab values, a limit
-// never below its own), and the closest hit with ties to the lowest id does not depend on the
-// order primitives are tested in. Rays whose directions differ in sign on some axis, or that the
-// single-ray path would reject, are traced one by one instead.
+// Closest hits for a packet of up to 16 rays that start close together and point the same way
+// (camera rays through one pixel or a block of pixels): one walk of the BVH for all of them.
+// At each node one SIMD test bounds, by interval arithmetic over the rays, which of the four
+// children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit4's
+// arithmetic, lane by lane) picks the rays whose primitives are tested, with the single-ray
+// tests. Each ray gets exactly the hit intersect() returns: it enters every box intersect()
+// would enter for it (the bounds are conservative, its own test is the same, its limit never
+// below its own), and the closest hit with ties to the lowest id does not depend on the order
+// primitives are tested in. Rays whose directions differ in sign on some axis, or that the
+// single-ray path rejects or rescales, are traced one by one instead.
 #include <algorithm>
 #include <bit>
 
@@ -36,26 +37,39 @@ constexpr int kPacketStack = 3 * kMaxBvhDepth + 1;
 // Fewer nodes than primitives, so a node index times 4 fits in 32 bits.
 static_assert(kMaxPrimitives <= (size_t{1} << 30));
 
+// Q groups of four rays (lanes = rays; ray 4q + k is lane k of group q).
+template <int Q>
 struct Packet {
-    const RayPre* pre[4];
-    // Per ray (lanes = rays): RayBoxTest's constants.
-    __m128 o_near[3], o_far[3], inv[3];
+    static constexpr int kRays = 4 * Q;
+    const RayPre* pre[kRays];
+    // Per ray: RayBoxTest's constants.
+    __m128 o_near[Q][3], o_far[Q][3], inv[Q][3];
     // For the whole packet (broadcast): origins and inverse directions that bound every ray's
     // slab distances (see bound4).
     __m128 po_near[3], po_far[3], inv_lo[3], inv_hi[3];
     int near_off[3], far_off[3];
 
-    // Ray by ray (lanes = rays): hit4's operations for child i of the node at `base`, so a lane
-    // is set exactly when RayBoxTest::hit4 of that ray would set bit i.
-    int rays_in(const float* base, int i, __m128 t_limit) const {
-        __m128 tn = _mm_setzero_ps(), tf = t_limit;
+    // Ray by ray: hit4's operations for child i of the node at `base`, so that bit r is set
+    // exactly when RayBoxTest::hit4 of ray r would set bit i.
+    uint32_t rays_in(const float* base, int i, const __m128* t_limit) const {
+        __m128 lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
-            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(base[near_off[a] + i]), o_near[a]), inv[a]);
-            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_set1_ps(base[far_off[a] + i]), o_far[a]), inv[a]);
-            tn = _mm_max_ps(t0, tn);
-            tf = _mm_min_ps(t1, tf);
+            lo[a] = _mm_set1_ps(base[near_off[a] + i]);
+            hi[a] = _mm_set1_ps(base[far_off[a] + i]);
         }
-        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))));
+        uint32_t in = 0;
+        for (int q = 0; q < Q; ++q) {
+            __m128 tn = _mm_setzero_ps(), tf = t_limit[q];
+            for (int a = 0; a < 3; ++a) {
+                __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo[a], o_near[q][a]), inv[q][a]);
+                __m128 t1 = _mm_mul_ps(_mm_sub_ps(hi[a], o_far[q][a]), inv[q][a]);
+                tn = _mm_max_ps(t0, tn);
+                tf = _mm_min_ps(t1, tf);
+            }
+            const int m = _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))));
+            in |= static_cast<uint32_t>(m) << (4 * q);
+        }
+        return in;
     }
 
     // Child by child (lanes = children): bit i is set when some ray may enter child i within
@@ -79,16 +93,28 @@ struct Packet {
     }
 };
 
-void closest_hit_packet(const Impl& g, const Packet& p, Best* best, int live, Counters& c) {
-    alignas(16) float lim[4];
-    for (int k = 0; k < 4; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
-    __m128 limit = _mm_load_ps(lim);
-    float limit_max = std::max(std::max(lim[0], lim[1]), std::max(lim[2], lim[3]));
+template <int Q>
+void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
+    constexpr int kRays = 4 * Q;
+    alignas(16) float lim[kRays];
+    for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
+    __m128 limit[Q];
+    float limit_max = -1;
+    auto load_limits = [&] {
+        __m128 m = _mm_set1_ps(-1.0f);
+        for (int q = 0; q < Q; ++q) {
+            limit[q] = _mm_load_ps(lim + 4 * q);
+            m = _mm_max_ps(m, limit[q]);
+        }
+        m = _mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+        limit_max = _mm_cvtss_f32(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1))));
+    };
+    load_limits();
     const Bvh4Node* nodes = g.nodes.data();
     uint64_t visits = 0, leaf_boxes = 0;
     auto leaf = [&](const PacketEntry& e) {
-        int lanes = p.rays_in(&nodes[e.box >> 2].lo[0][0], static_cast<int>(e.box & 3), limit);
-        ++leaf_boxes;
+        const uint32_t lanes = p.rays_in(&nodes[e.box >> 2].lo[0][0], static_cast<int>(e.box & 3), limit);
+        leaf_boxes += Q;
         if (lanes == 0) return;
         // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
         // fetched once. Each ray still meets the primitives in order (not that it matters: the
@@ -100,26 +126,25 @@ void closest_hit_packet(const Impl& g, const Packet& p, Best* best, int live, Co
             if (((entry >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle)) {
                 const TriPrim& tri = g.tris[slot];
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
-                for (int l = lanes; l != 0; l &= l - 1) {
-                    const int k = std::countr_zero(static_cast<unsigned>(l));
+                for (uint32_t l = lanes; l != 0; l &= l - 1) {
+                    const int k = std::countr_zero(l);
                     if (test_triangle(*p.pre[k], v0, v1, v2, best[k].limit, c, t, b1, b2))
                         best[k].offer(t, tri.prim, slot, b1, b2);
                 }
             } else {
-                for (int l = lanes; l != 0; l &= l - 1) {
-                    const int k = std::countr_zero(static_cast<unsigned>(l));
+                for (uint32_t l = lanes; l != 0; l &= l - 1) {
+                    const int k = std::countr_zero(l);
                     uint32_t prim;
                     if (test_entry(g, *p.pre[k], entry, best[k].limit, c, t, prim, b1, b2))
                         best[k].offer(t, prim, slot, b1, b2);
                 }
             }
         }
-        for (; lanes != 0; lanes &= lanes - 1) {
-            const int k = std::countr_zero(static_cast<unsigned>(lanes));
+        for (uint32_t l = lanes; l != 0; l &= l - 1) {
+            const int k = std::countr_zero(l);
             lim[k] = to_float_up(best[k].limit);
         }
-        limit = _mm_load_ps(lim);
-        limit_max = std::max(std::max(lim[0], lim[1]), std::max(lim[2], lim[3]));
+        load_limits();
     };
     PacketEntry stack[kPacketStack];
     int sp = 0;
@@ -176,51 +201,74 @@ inline __m128 all_max(__m128 x) {
     return _mm_max_ps(x, _mm_shuffle_ps(x, x, _MM_SHUFFLE(2, 3, 0, 1)));
 }
 
-// The packet's constants from its rays (lanes past n repeat the last one). False unless on
+// The packet's constants from its rays (rays past n repeat the last one). False unless on
 // every axis all directions have one sign and every inverse direction is a finite, non-zero
 // float: then no slab distance is NaN and one plane is near for all.
-bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet& p) {
-    Vec3 o[4], d[4];
-    for (int k = 0; k < 4; ++k) {
+template <int Q>
+bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet<Q>& p) {
+    Vec3 o[Q][4], d[Q][4];
+    for (int k = 0; k < 4 * Q; ++k) {
         p.pre[k] = &pre[k];
-        o[k] = rays[std::min(k, n - 1)].o;
-        d[k] = rays[std::min(k, n - 1)].d;
+        o[k / 4][k % 4] = rays[std::min(k, n - 1)].o;
+        d[k / 4][k % 4] = rays[std::min(k, n - 1)].d;
     }
     bool neg[3];
     for (int a = 0; a < 3; ++a) {
-        neg[a] = std::signbit(d[0][a]);
-        for (int k = 1; k < 4; ++k)
-            if (std::signbit(d[k][a]) != neg[a]) return false;
+        neg[a] = std::signbit(d[0][0][a]);
+        for (int k = 1; k < 4 * Q; ++k)
+            if (std::signbit(d[k / 4][k % 4][a]) != neg[a]) return false;
     }
-    slab_constants4(o, d, neg, p.o_near, p.o_far, p.inv);
     const __m128 sign_bit = _mm_set1_ps(-0.0f);
     const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    __m128 on_lo[3], on_hi[3], of_lo[3], of_hi[3], iv_lo[3], iv_hi[3];
+    for (int q = 0; q < Q; ++q) {
+        slab_constants4(o[q], d[q], neg, p.o_near[q], p.o_far[q], p.inv[q]);
+        for (int a = 0; a < 3; ++a) {
+            const __m128 mag = _mm_andnot_ps(sign_bit, p.inv[q][a]);
+            if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) != 15)
+                return false;
+            const bool first = q == 0;
+            on_lo[a] = first ? p.o_near[q][a] : _mm_min_ps(on_lo[a], p.o_near[q][a]);
+            on_hi[a] = first ? p.o_near[q][a] : _mm_max_ps(on_hi[a], p.o_near[q][a]);
+            of_lo[a] = first ? p.o_far[q][a] : _mm_min_ps(of_lo[a], p.o_far[q][a]);
+            of_hi[a] = first ? p.o_far[q][a] : _mm_max_ps(of_hi[a], p.o_far[q][a]);
+            iv_lo[a] = first ? p.inv[q][a] : _mm_min_ps(iv_lo[a], p.inv[q][a]);
+            iv_hi[a] = first ? p.inv[q][a] : _mm_max_ps(iv_hi[a], p.inv[q][a]);
+        }
+    }
     for (int a = 0; a < 3; ++a) {
-        const __m128 mag = _mm_andnot_ps(sign_bit, p.inv[a]);
-        if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) != 15)
-            return false;
         p.near_off[a] = (neg[a] ? 12 : 0) + 4 * a;
         p.far_off[a] = (neg[a] ? 0 : 12) + 4 * a;
         // The near plane's offset (plane − origin) is least with the largest origin when the
         // rays go up this axis, and a negative inverse turns the greatest offset into the least
         // distance; the far plane's the other way round.
-        p.po_near[a] = neg[a] ? all_min(p.o_near[a]) : all_max(p.o_near[a]);
-        p.po_far[a] = neg[a] ? all_max(p.o_far[a]) : all_min(p.o_far[a]);
-        p.inv_lo[a] = all_min(p.inv[a]);
-        p.inv_hi[a] = all_max(p.inv[a]);
+        p.po_near[a] = neg[a] ? all_min(on_lo[a]) : all_max(on_hi[a]);
+        p.po_far[a] = neg[a] ? all_max(of_hi[a]) : all_min(of_lo[a]);
+        p.inv_lo[a] = all_min(iv_lo[a]);
+        p.inv_hi[a] = all_max(iv_hi[a]);
     }
     return true;
 }
 
-void trace_packet(const Impl& g, const Packet& p, const Ray* rays, int n, double tmax,
-                  RayStats& stats, std::optional<HitRecord>* out) {
-    Best best[4] = {Best{tmax}, Best{tmax}, Best{tmax}, Best{tmax}};
+// The packet walk for n ≤ 4Q rays; false (nothing traced) when make_packet declines them.
+template <int Q>
+bool trace_packet(const Impl& g, const Ray* rays, int n, double tmax, RayStats& stats,
+                  std::optional<HitRecord>* out) {
+    // Rays past n repeat the last ray and stay dead (limit −1: no box is entered). The slab
+    // constants are made for all the rays at once (make_packet), not by RayPre.
+    RayPre pre[4 * Q];
+    for (int k = 0; k < 4 * Q; ++k) pre[k].init(rays[std::min(k, n - 1)], false);
+    Packet<Q> p;
+    if (!make_packet(rays, n, pre, p)) return false;
+    Best best[4 * Q];
+    for (Best& b : best) b = Best{tmax};
     Counters c;
     if (!g.planes.empty())
         for (int k = 0; k < n; ++k) test_planes<0>(g, rays[k], best[k], c);
-    closest_hit_packet(g, p, best, (1 << n) - 1, c);
+    closest_hit_packet(g, p, best, (1u << n) - 1, c);
     c.flush(stats);
     for (int k = 0; k < n; ++k) out[k] = best[k].record();
+    return true;
 }
 
 }  // namespace
@@ -229,7 +277,7 @@ void trace_packet(const Impl& g, const Packet& p, const Ray* rays, int n, double
 void Geometry::intersect_packet(const Ray* rays, int n, double tmax, RayStats& stats,
                                 std::optional<HitRecord>* out) const {
     const Impl& g = *impl_;
-    bool packet = n >= 2 && n <= 4 && !g.nodes.empty() && tmax > 0;
+    bool packet = n >= 2 && n <= kMaxPacket && !g.nodes.empty() && tmax > 0;
 #if !defined(__SSE2__)
     packet = false;
 #endif
@@ -237,18 +285,9 @@ void Geometry::intersect_packet(const Ray* rays, int n, double tmax, RayStats& s
     for (int k = 0; k < n && packet; ++k)
         packet = ray_is_valid(rays[k], tmax) && direction_scale(rays[k].d) == 0;
 #if defined(__SSE2__)
-    if (packet) {
-        // Lanes past n repeat the last ray and stay dead (limit −1: no box is entered). The
-        // slab constants are made for all four rays at once (make_packet), not by RayPre.
-        const RayPre pre[4] = {RayPre(rays[0], false), RayPre(rays[std::min(1, n - 1)], false),
-                               RayPre(rays[std::min(2, n - 1)], false),
-                               RayPre(rays[std::min(3, n - 1)], false)};
-        Packet p;
-        if (make_packet(rays, n, pre, p)) {
-            trace_packet(g, p, rays, n, tmax, stats, out);
-            return;
-        }
-    }
+    if (packet && (n <= 4 ? trace_packet<1>(g, rays, n, tmax, stats, out)
+                          : trace_packet<4>(g, rays, n, tmax, stats, out)))
+        return;
 #endif
     for (int k = 0; k < n; ++k) out[k] = intersect(rays[k], tmax, stats);
 }

@@ -99,8 +99,8 @@ public:
 
     void camera_samples(const double* px, const double* py, const uint64_t* key, int n,
                         Color* out) override {
-        Ray rays[4];
-        std::optional<HitRecord> hits[4];
+        Ray rays[Geometry::kMaxPacket];
+        std::optional<HitRecord> hits[Geometry::kMaxPacket];
         for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
         stats_.camera_rays += uint64_t(n);
         geom_.intersect_packet(rays, n, kInfinity, stats_, hits);

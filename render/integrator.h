@@ -34,8 +34,8 @@ public:
     // The colour seen by the camera ray through image position (px, py). `key` is the sample's
     // random key (sampling.h); the sample is not checked for NaN here (the film does that).
     virtual Color camera_sample(double px, double py, uint64_t key) = 0;
-    // camera_sample for n ≤ 4 samples at once (out[k] for positions px[k], py[k], keys key[k]),
-    // with the same colours: the camera rays are intersected as one packet.
+    // camera_sample for n ≤ Geometry::kMaxPacket samples at once (out[k] for positions px[k],
+    // py[k], keys key[k]), with the same colours: the camera rays are intersected as a packet.
     virtual void camera_samples(const double* px, const double* py, const uint64_t* key, int n,
                                 Color* out) = 0;
     // The colour seen along any ray (unit direction) at recursion depth 0.

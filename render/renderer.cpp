@@ -64,8 +64,8 @@ public:
 
     void render(const Region& t) {
         if (samples_ == 1) {
-            // One ray a pixel: the pixels' centre rays, a 2×2 block at a time (one packet).
-            for_quads(t, 0, [&](int x, int y, const Color& c) { store(x, y, guarded(c)); });
+            // One ray a pixel: the pixels' centre rays, a 4×4 block at a time (one packet).
+            for_blocks(t, 0, [&](int x, int y, const Color& c) { store(x, y, guarded(c)); });
             return;
         }
         for (int y = t.y0; y < t.y1; ++y)
@@ -74,7 +74,7 @@ public:
 
     // Phase 1 of adaptive supersampling.
     void render_centres(const Region& t) {
-        for_quads(t, kCentreSample, [&](int x, int y, const Color& colour) {
+        for_blocks(t, kCentreSample, [&](int x, int y, const Color& colour) {
                       const size_t i = prepass_.index(x, y);
                       prepass_.centre[i] = guarded(colour);
                       const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
@@ -113,39 +113,42 @@ private:
         return Color(0);
     }
 
-    // The centre samples (sample index `sample`) of the pixels of `t`, traced a 2×2 block of
+    // The centre samples (sample index `sample`) of the pixels of `t`, traced a 4×4 block of
     // pixels at a time as one packet; done(x, y, colour) for each, row by row within a block.
     template <class Done>
-    void for_quads(const Region& t, uint32_t sample, Done done) {
-        for (int y = t.y0; y < t.y1; y += 2) {
-            for (int x = t.x0; x < t.x1; x += 2) {
-                double px[4], py[4];
-                uint64_t key[4];
-                int xs[4], ys[4], n = 0;
-                for (int dy = 0; dy < 2 && y + dy < t.y1; ++dy) {
-                    for (int dx = 0; dx < 2 && x + dx < t.x1; ++dx) {
+    void for_blocks(const Region& t, uint32_t sample, Done done) {
+        constexpr int kSide = 4;
+        static_assert(kSide * kSide <= Geometry::kMaxPacket);
+        for (int y = t.y0; y < t.y1; y += kSide) {
+            for (int x = t.x0; x < t.x1; x += kSide) {
+                double px[kSide * kSide], py[kSide * kSide];
+                uint64_t key[kSide * kSide];
+                int xs[kSide * kSide], ys[kSide * kSide], n = 0;
+                for (int dy = 0; dy < kSide && y + dy < t.y1; ++dy) {
+                    for (int dx = 0; dx < kSide && x + dx < t.x1; ++dx) {
                         xs[n] = x + dx, ys[n] = y + dy;
                         px[n] = xs[n] + 0.5, py[n] = ys[n] + 0.5;
                         key[n] = sample_key(pixel_key(seed_, xs[n], ys[n]), sample);
                         ++n;
                     }
                 }
-                Color out[4];
+                Color out[kSide * kSide];
                 tracer_.camera_samples(px, py, key, n, out);
                 for (int k = 0; k < n; ++k) done(xs[k], ys[k], out[k]);
             }
         }
     }
 
-    // The box-filtered average of the pixel's camera samples (1 = its centre), traced four
-    // at a time as packets and summed in grid order.
+    // The box-filtered average of the pixel's camera samples (1 = its centre), traced as
+    // packets of up to Geometry::kMaxPacket and summed in grid order.
     Color full_pixel(int x, int y) {
         const uint64_t pk = pixel_key(seed_, x, y);
         if (samples_ == 1) return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
         Color sum(0);
-        double px[4], py[4];
-        uint64_t key[4];
-        Color out[4];
+        constexpr int kMax = Geometry::kMaxPacket;
+        double px[kMax], py[kMax];
+        uint64_t key[kMax];
+        Color out[kMax];
         int n = 0;
         auto flush = [&] {
             tracer_.camera_samples(px, py, key, n, out);
@@ -158,7 +161,7 @@ private:
                 const Uniform2 j = camera_jitter(key[n]);
                 px[n] = x + (c + j.u) / grid_.cols;
                 py[n] = y + (r + j.v) / grid_.rows;
-                if (++n == 4) flush();
+                if (++n == kMax) flush();
             }
         }
         if (n > 0) flush();

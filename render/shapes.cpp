@@ -11,7 +11,9 @@
 
 namespace wsd::render {
 
-RayPre::RayPre(const Ray& r, bool with_box) : o(r.o), d(r.d) {
+void RayPre::init(const Ray& r, bool with_box) {
+    o = r.o;
+    d = r.d;
     Vec3 ad = abs3(d);
     kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
     kx = kz + 1 == 3 ? 0 : kz + 1;

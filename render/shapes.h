@@ -25,7 +25,9 @@ struct RayPre {
     RayBoxTest box;
 
     // with_box: also the slab-test constants (only BVH traversal needs them).
-    explicit RayPre(const Ray& r, bool with_box = true);
+    explicit RayPre(const Ray& r, bool with_box = true) { init(r, with_box); }
+    RayPre() = default;
+    void init(const Ray& r, bool with_box);
 };
 
 // Triangle: indices into the world vertex pool and the canonical primitive id.

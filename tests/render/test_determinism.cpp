@@ -165,15 +165,16 @@ TEST_CASE("camera samples traced as a packet give exactly the colours traced one
         for (int i = 0; i < 3000; ++i) {
             const double spread = i % 3 == 0 ? 0.5 : i % 3 == 1 ? 2.0 : 40.0;
             const double x0 = uniform(0, 45), y0 = uniform(0, 37);
-            double px[4], py[4];
-            uint64_t key[4];
-            for (int k = 0; k < 4; ++k) {
+            constexpr int kMax = wsd::render::Geometry::kMaxPacket;
+            double px[kMax], py[kMax];
+            uint64_t key[kMax];
+            for (int k = 0; k < kMax; ++k) {
                 px[k] = std::clamp(x0 + uniform(0, spread), 0.0, 45.0);
                 py[k] = std::clamp(y0 + uniform(0, spread), 0.0, 37.0);
-                key[k] = uint64_t(i) * 4 + uint64_t(k);
+                key[k] = uint64_t(i) * kMax + uint64_t(k);
             }
-            const int n = 1 + i % 4;
-            Color out[4];
+            const int n = 1 + i % kMax;
+            Color out[kMax];
             tracer->camera_samples(px, py, key, n, out);
             for (int k = 0; k < n; ++k) {
                 const Color one = tracer->camera_sample(px[k], py[k], key[k]);
@@ -182,6 +183,6 @@ TEST_CASE("camera samples traced as a packet give exactly the colours traced one
                 lit += one != spec.settings.background ? 1 : 0;
             }
         }
-        CHECK(lit > 3000);  // most samples see the scene, not the background
+        CHECK(lit > 3000 * 4);  // most samples see the scene, not the background
     }
 }

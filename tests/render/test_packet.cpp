@@ -1,4 +1,4 @@
-// Packets (Geometry::intersect_packet): up to four rays traced in one walk of the BVH must get
+// Packets (Geometry::intersect_packet): up to 16 rays traced in one walk of the BVH must get
 // exactly the hits intersect() gives each of them — same primitive, t, slot and barycentrics —
 // whether they share an origin (camera rays), start at different points, point in mixed
 // directions (traced one by one), have zero or tiny direction components, or are invalid.
@@ -44,7 +44,7 @@ std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, Vec3 c, double r) {
 // Requires the packet's answers to equal the single-ray answers; returns how many rays hit.
 int require_same_as_single(const Geometry& g, const Ray* rays, int n, double tmax) {
     RayStats packet_stats, single_stats;
-    std::optional<HitRecord> out[4];
+    std::optional<HitRecord> out[Geometry::kMaxPacket];
     g.intersect_packet(rays, n, tmax, packet_stats, out);
     int hits = 0;
     for (int k = 0; k < n; ++k) {
@@ -63,10 +63,10 @@ int require_same_as_single(const Geometry& g, const Ray* rays, int n, double tma
     return hits;
 }
 
-// Four rays around a base ray: a shared origin (camera) or origins spread by `spread`, and
-// directions turned by up to `turn` (relative).
+// kMaxPacket rays around a base ray: a shared origin (camera) or origins spread by `spread`,
+// and directions turned by up to `turn` (relative).
 void make_packet(Rng& rng, const Ray& base, double spread, double turn, Ray* out) {
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < Geometry::kMaxPacket; ++k) {
         Vec3 o = base.o + spread * rng.in_box(Vec3(-1), Vec3(1));
         Vec3 d = base.d + turn * glm::length(base.d) * rng.in_box(Vec3(-1), Vec3(1));
         out[k] = {o, d};
@@ -88,7 +88,7 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
         REQUIRE(g);
         INFO("scene " << s << " size " << size);
         for (int i = 0; i < packets; ++i) {
-            Ray rays[4];
+            Ray rays[Geometry::kMaxPacket];
             const Ray base = random_ray(rng, size);
             switch (i % 4) {
             case 0: make_packet(rng, base, 0, rng.log_uniform(-6, -1), rays); break;  // camera
@@ -98,7 +98,8 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
                 for (Ray& r : rays) r = random_ray(rng, size);  // mixed directions
                 break;
             }
-            const int n = rng.integer(1, 4);
+            // Both packet widths (up to 4 rays, up to 16) and every partial size.
+            const int n = rng.integer(1, i % 8 < 4 ? 4 : Geometry::kMaxPacket);
             const double tmax = rng.uniform() < 0.7 ? kInf : rng.uniform(0, 2 * size);
             hits += require_same_as_single(*g, rays, n, tmax);
             total += n;
@@ -119,11 +120,11 @@ TEST_CASE("packets from a camera inside a dense mesh, and through its silhouette
         const bool inside = i % 2 == 1;
         const Vec3 eye = inside ? 0.5 * rng.in_box(Vec3(-1), Vec3(1)) : 3.0 * rng.unit_vector();
         const Vec3 aim = inside ? rng.unit_vector() : rng.in_box(Vec3(-1.2), Vec3(1.2)) - eye;
-        Ray rays[4];
+        Ray rays[Geometry::kMaxPacket];
         make_packet(rng, {eye, aim}, 0, rng.log_uniform(-5, -2), rays);
-        hits += require_same_as_single(*g, rays, 4, kInf);
+        hits += require_same_as_single(*g, rays, i % 4 < 2 ? 4 : Geometry::kMaxPacket, kInf);
     }
-    CHECK(hits > ray_budget(20000) * 2);
+    CHECK(hits > ray_budget(20000) * 4);
 }
 
 TEST_CASE("packets with zero, tiny, huge or invalid direction components fall back and agree") {
@@ -133,9 +134,10 @@ TEST_CASE("packets with zero, tiny, huge or invalid direction components fall ba
     REQUIRE(g);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < 2000; ++i) {
-        Ray rays[4];
+        Ray rays[Geometry::kMaxPacket];
         make_packet(rng, random_ray(rng, 1), 0, 1e-3, rays);
-        const int lane = rng.integer(0, 3), axis = rng.integer(0, 2);
+        const int n = i % 2 ? 4 : Geometry::kMaxPacket;
+        const int lane = rng.integer(0, n - 1), axis = rng.integer(0, 2);
         switch (i % 6) {
         case 0: rays[lane].d[axis] = 0; break;
         case 1: rays[lane].d[axis] = -0.0; break;
@@ -144,8 +146,8 @@ TEST_CASE("packets with zero, tiny, huge or invalid direction components fall ba
         case 4: rays[lane].d[axis] = nan; break;      // rejected by both
         default: rays[lane].o[axis] = std::numeric_limits<double>::infinity(); break;
         }
-        require_same_as_single(*g, rays, 4, kInf);
-        require_same_as_single(*g, rays, 4, -1);  // nothing within a negative limit
+        require_same_as_single(*g, rays, n, kInf);
+        require_same_as_single(*g, rays, n, -1);  // nothing within a negative limit
     }
 }
 
@@ -155,9 +157,9 @@ TEST_CASE("a packet without a BVH is traced ray by ray with the same answers") {
     auto g = build_ok(spec, false);
     REQUIRE(g);
     for (int i = 0; i < 500; ++i) {
-        Ray rays[4];
+        Ray rays[Geometry::kMaxPacket];
         make_packet(rng, random_ray(rng, 1), 0, 1e-2, rays);
-        require_same_as_single(*g, rays, rng.integer(1, 4), kInf);
+        require_same_as_single(*g, rays, rng.integer(1, Geometry::kMaxPacket), kInf);
     }
 }
 
