@@ -1,7 +1,8 @@
 // Geometry benchmark: a closed 1,000,000-triangle UV sphere. Measures the Geometry build on 1
 // and 2 threads, bytes per triangle, primary (closest-hit) and shadow (any-hit) rays per
-// CPU-second on one thread (primary rays both one by one and as 2×2-pixel packets, as the
-// renderer traces them), and the same queries on the Cornell box's 28 primitives.
+// CPU-second on one thread (primary rays one by one, and as packets of 2×2 and 4×4 pixels; the
+// renderer traces one-ray-a-pixel images in 4×4 blocks), and the same queries on the Cornell
+// box's 28 primitives.
 // Prints measured numbers only. Usage: bench_mesh [slices stacks] (default 1000 501).
 #include <algorithm>
 #include <chrono>
@@ -60,7 +61,7 @@ std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, float radius) {
 
 struct Throughput {
     double primary = 0, shadow = 0;  // rays per CPU-second
-    double packets = 0;              // primary rays per CPU-second, traced as 2×2-pixel packets
+    double packets4 = 0, packets16 = 0;  // primary rays per CPU-second in 2×2 and 4×4-pixel packets
     double boxes_primary = 0, prims_primary = 0;  // tests per primary ray
     double hit_fraction = 0, occluded_fraction = 0;
 };
@@ -81,18 +82,22 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
                     double sx = (2 * (x + 0.5) / size - 1) * h, sy = (1 - 2 * (y + 0.5) / size) * h;
                     rays.push_back({eye, fwd + sx * right + sy * up});
                 }
-    // The same rays as the renderer traces them with one ray a pixel: 2×2 blocks as packets.
-    std::vector<Ray> quads;
-    quads.reserve(rays.size());
+    // The same rays in square blocks of side×side pixels, one packet each (the renderer traces
+    // one-ray-a-pixel images in 4×4 blocks).
     auto camera = [&](int x, int y) {
         double sx = (2 * (x + 0.5) / size - 1) * h, sy = (1 - 2 * (y + 0.5) / size) * h;
         return Ray{eye, fwd + sx * right + sy * up};
     };
-    for (int ty = 0; ty < size; ty += 16)
-        for (int tx = 0; tx < size; tx += 16)
-            for (int y = ty; y < std::min(ty + 16, size); y += 2)
-                for (int x = tx; x < std::min(tx + 16, size); x += 2)
-                    for (int k = 0; k < 4; ++k) quads.push_back(camera(x + k % 2, y + k / 2));
+    auto blocks = [&](int side) {
+        std::vector<Ray> out;
+        out.reserve(rays.size());
+        for (int ty = 0; ty < size; ty += 16)
+            for (int tx = 0; tx < size; tx += 16)
+                for (int y = ty; y < std::min(ty + 16, size); y += side)
+                    for (int x = tx; x < std::min(tx + 16, size); x += side)
+                        for (int k = 0; k < side * side; ++k) out.push_back(camera(x + k % side, y + k / side));
+        return out;
+    };
     RayStats stats;
     std::vector<Ray> shadow;
     shadow.reserve(rays.size());
@@ -104,16 +109,23 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
     }
     double t1 = cpu_now();
     const RayStats primary_stats = stats;
-    size_t packet_hits = 0;
-    RayStats packet_stats;
-    std::optional<HitRecord> packet_out[4];
-    double p0 = cpu_now();
-    for (size_t i = 0; i + 4 <= quads.size(); i += 4) {
-        g.intersect_packet(&quads[i], 4, std::numeric_limits<double>::infinity(), packet_stats, packet_out);
-        for (const auto& o : packet_out) packet_hits += o ? 1 : 0;
-    }
-    double p1 = cpu_now();
-    if (packet_hits != hits) std::printf("packet hits %zu differ from single-ray hits %zu\n", packet_hits, hits);
+    // Primary rays as packets: rays per CPU-second; the hits must be the single-ray hits.
+    auto packets = [&](int side) {
+        const std::vector<Ray> packed = blocks(side);
+        const int n = side * side;
+        size_t packet_hits = 0;
+        RayStats packet_stats;
+        std::optional<HitRecord> out[Geometry::kMaxPacket];
+        const double p0 = cpu_now();
+        for (size_t i = 0; i + size_t(n) <= packed.size(); i += size_t(n)) {
+            g.intersect_packet(&packed[i], n, std::numeric_limits<double>::infinity(), packet_stats, out);
+            for (int k = 0; k < n; ++k) packet_hits += out[k] ? 1 : 0;
+        }
+        const double p1 = cpu_now();
+        if (packet_hits != hits) std::printf("packet hits %zu differ from single-ray hits %zu\n", packet_hits, hits);
+        return static_cast<double>(packed.size()) / (p1 - p0);
+    };
+    const double packets4 = packets(2), packets16 = packets(4);
     for (const Ray& r : rays) {
         auto hit = g.intersect(r, std::numeric_limits<double>::infinity(), stats);
         if (!hit) continue;
@@ -128,7 +140,8 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
     double t3 = cpu_now();
     Throughput out;
     out.primary = static_cast<double>(rays.size()) / (t1 - t0);
-    out.packets = static_cast<double>(quads.size()) / (p1 - p0);
+    out.packets4 = packets4;
+    out.packets16 = packets16;
     out.shadow = shadow.empty() ? 0 : static_cast<double>(shadow.size()) / (t3 - t2);
     const double n_rays = static_cast<double>(rays.size());
     out.boxes_primary = static_cast<double>(primary_stats.box_tests) / n_rays;
@@ -218,7 +231,8 @@ int main(int argc, char** argv) {
     Throughput t = measure(*g, {0.3, 0.4, -3}, {0, 0, 0}, 45, {5, 5, -5}, 1024);
     std::printf("mesh primary rays: %.2f M/CPU-s (%.1f %% hit; %.1f node tests, %.1f triangle tests a ray)\n",
                 t.primary * 1e-6, 100 * t.hit_fraction, t.boxes_primary, t.prims_primary);
-    std::printf("mesh primary rays in 2x2 packets (as the renderer traces them): %.2f M/CPU-s\n", t.packets * 1e-6);
+    std::printf("mesh primary rays in packets: 2x2 pixels %.2f M/CPU-s, 4x4 pixels (the renderer's 1-spp path) %.2f M/CPU-s\n",
+                t.packets4 * 1e-6, t.packets16 * 1e-6);
     std::printf("mesh shadow rays:  %.2f M/CPU-s (%.1f %% occluded)\n", t.shadow * 1e-6, 100 * t.occluded_fraction);
 
     std::vector<SpecError> errors;
@@ -230,8 +244,8 @@ int main(int argc, char** argv) {
     }
     for (auto* cg : {cornell.get(), cornell_bf.get()}) {
         Throughput c = measure(*cg, {0, 0, -550}, {0, 0, 500}, 60, {25, 500, 625}, 512);
-        std::printf("cornell %s: primary %.2f M/CPU-s (packets %.2f), shadow %.2f M/CPU-s (%.1f %% occluded)\n",
-                    cg == cornell.get() ? "BVH  " : "brute", c.primary * 1e-6, c.packets * 1e-6,
+        std::printf("cornell %s: primary %.2f M/CPU-s (packets of 4: %.2f, of 16: %.2f), shadow %.2f M/CPU-s (%.1f %% occluded)\n",
+                    cg == cornell.get() ? "BVH  " : "brute", c.primary * 1e-6, c.packets4 * 1e-6, c.packets16 * 1e-6,
                     c.shadow * 1e-6, 100 * c.occluded_fraction);
     }
     return 0;
