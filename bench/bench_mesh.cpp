@@ -3,7 +3,8 @@
 // CPU-second on one thread (primary rays one by one, and as packets of 2×2 and 4×4 pixels; the
 // renderer traces one-ray-a-pixel images in 4×4 blocks), and the same queries on the Cornell
 // box's 28 primitives.
-// Prints measured numbers only. Usage: bench_mesh [slices stacks] (default 1000 501).
+// Each rate is the median of 5 passes taken in turn with the others. Prints measured numbers
+// only. Usage: bench_mesh [slices stacks] (default 1000 501).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -99,33 +100,11 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
         return out;
     };
     RayStats stats;
+    size_t hits = 0;
+    for (const Ray& r : rays) hits += g.intersect(r, std::numeric_limits<double>::infinity(), stats) ? 1 : 0;
+    const RayStats primary_stats = stats;
     std::vector<Ray> shadow;
     shadow.reserve(rays.size());
-    size_t hits = 0;
-    double t0 = cpu_now();
-    for (const Ray& r : rays) {
-        auto hit = g.intersect(r, std::numeric_limits<double>::infinity(), stats);
-        hits += hit ? 1 : 0;
-    }
-    double t1 = cpu_now();
-    const RayStats primary_stats = stats;
-    // Primary rays as packets: rays per CPU-second; the hits must be the single-ray hits.
-    auto packets = [&](int side) {
-        const std::vector<Ray> packed = blocks(side);
-        const int n = side * side;
-        size_t packet_hits = 0;
-        RayStats packet_stats;
-        std::optional<HitRecord> out[Geometry::kMaxPacket];
-        const double p0 = cpu_now();
-        for (size_t i = 0; i + size_t(n) <= packed.size(); i += size_t(n)) {
-            g.intersect_packet(&packed[i], n, std::numeric_limits<double>::infinity(), packet_stats, out);
-            for (int k = 0; k < n; ++k) packet_hits += out[k] ? 1 : 0;
-        }
-        const double p1 = cpu_now();
-        if (packet_hits != hits) std::printf("packet hits %zu differ from single-ray hits %zu\n", packet_hits, hits);
-        return static_cast<double>(packed.size()) / (p1 - p0);
-    };
-    const double packets4 = packets(2), packets16 = packets(4);
     for (const Ray& r : rays) {
         auto hit = g.intersect(r, std::numeric_limits<double>::infinity(), stats);
         if (!hit) continue;
@@ -135,14 +114,54 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
         shadow.push_back({o, light - o});
     }
     size_t occluded = 0;
-    double t2 = cpu_now();
     for (const Ray& r : shadow) occluded += g.occluded(r, 1.0, stats) ? 1 : 0;
-    double t3 = cpu_now();
+
+    // Rays per CPU-second of one pass of each query, the passes taken in turn (so that a noisy
+    // moment falls on all of them alike), kPasses rounds, the median kept.
+    const std::vector<Ray> packed4 = blocks(2), packed16 = blocks(4);
+    auto single = [&] {
+        size_t n = 0;
+        for (const Ray& r : rays) n += g.intersect(r, std::numeric_limits<double>::infinity(), stats) ? 1 : 0;
+        return n;
+    };
+    auto packets = [&](const std::vector<Ray>& packed, int n) {
+        size_t found = 0;
+        std::optional<HitRecord> out[Geometry::kMaxPacket];
+        for (size_t i = 0; i + size_t(n) <= packed.size(); i += size_t(n)) {
+            g.intersect_packet(&packed[i], n, std::numeric_limits<double>::infinity(), stats, out);
+            for (int k = 0; k < n; ++k) found += out[k] ? 1 : 0;
+        }
+        return found;
+    };
+    auto shadows = [&] {
+        size_t n = 0;
+        for (const Ray& r : shadow) n += g.occluded(r, 1.0, stats) ? 1 : 0;
+        return n;
+    };
+    constexpr int kPasses = 5;
+    std::vector<double> rate[4];
+    auto timed = [&](std::vector<double>& into, size_t count, auto&& pass, size_t expect) {
+        const double t0 = cpu_now();
+        const size_t got = pass();
+        const double t1 = cpu_now();
+        if (got != expect) std::printf("a pass found %zu hits, the first found %zu\n", got, expect);
+        into.push_back(static_cast<double>(count) / (t1 - t0));
+    };
+    for (int k = 0; k < kPasses; ++k) {
+        timed(rate[0], rays.size(), single, hits);
+        timed(rate[1], packed4.size(), [&] { return packets(packed4, 4); }, hits);
+        timed(rate[2], packed16.size(), [&] { return packets(packed16, 16); }, hits);
+        timed(rate[3], shadow.size(), shadows, occluded);
+    }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
     Throughput out;
-    out.primary = static_cast<double>(rays.size()) / (t1 - t0);
-    out.packets4 = packets4;
-    out.packets16 = packets16;
-    out.shadow = shadow.empty() ? 0 : static_cast<double>(shadow.size()) / (t3 - t2);
+    out.primary = median(rate[0]);
+    out.packets4 = median(rate[1]);
+    out.packets16 = median(rate[2]);
+    out.shadow = shadow.empty() ? 0 : median(rate[3]);
     const double n_rays = static_cast<double>(rays.size());
     out.boxes_primary = static_cast<double>(primary_stats.box_tests) / n_rays;
     out.prims_primary = static_cast<double>(primary_stats.triangle_tests + primary_stats.sphere_tests +
