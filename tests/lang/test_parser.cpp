@@ -5,7 +5,6 @@
 
 #include <pthread.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -372,13 +371,12 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
         "let x = " + nested("(", "", "", 100'000),
     };
     for (const std::string& text : deep) {
-        const auto start = std::chrono::steady_clock::now();
+        // No timing here (unit tests never time): a hang or runaway recursion would show as a
+        // crash or ctest's timeout; bench_parse measures speed.
         const auto p = parse_text(text);
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         INFO(text.substr(0, 40));
         REQUIRE(p->diags.all().size() == 1);
         CHECK(p->diags.all()[0].message == "nesting too deep (the limit is 256 nested blocks and expressions)");
-        CHECK(secs < 5.0);  // generous: linear work, even under sanitizers
     }
     // Just under the limit is fine.
     CHECK(parse_text("let x = " + nested("(", "1", ")", 200))->errors().empty());
