@@ -166,11 +166,12 @@ inline std::unique_ptr<Geometry> build_ok(const SceneSpec& spec, bool use_bvh = 
 
 // pbrt-v4's Triangle.Watertight mesh (robustness.md M2): a closed UV sphere whose vertices are
 // pushed out radially by up to `bump` (5 in M2: spiky); poles and the seam share vertices.
+// bump 0 gives the plain UV sphere of the given radius.
 inline std::shared_ptr<MeshData> perturbed_uv_sphere(int n_theta, int n_phi, Rng& rng, Vec3 offset = Vec3(0),
-                                                     double bump = 5) {
+                                                     double bump = 5, double radius = 1) {
     auto m = std::make_shared<MeshData>();
     auto push = [&](double theta, double phi) {
-        double r = 1 + rng.uniform(0, bump);
+        double r = radius * (1 + rng.uniform(0, bump));
         Vec3 p = offset + r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
         m->vertices.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
     };

@@ -18,29 +18,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A closed UV sphere mesh (shared vertices) of radius r around c.
-std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, Vec3 c, double r) {
-    auto m = std::make_shared<MeshData>();
-    auto vert = [&](double theta, double phi) {
-        return Vec3f(Vec3(c.x + r * std::sin(theta) * std::cos(phi), c.y + r * std::cos(theta),
-                          c.z + r * std::sin(theta) * std::sin(phi)));
-    };
-    m->vertices.push_back(vert(0, 0));
-    for (int i = 1; i < stacks; ++i)
-        for (int j = 0; j < slices; ++j) m->vertices.push_back(vert(kPi * i / stacks, 2 * kPi * j / slices));
-    m->vertices.push_back(vert(kPi, 0));
-    auto ring = [slices](int i, int j) { return static_cast<unsigned>(1 + (i - 1) * slices + (j % slices)); };
-    const unsigned bottom = static_cast<unsigned>(m->vertices.size() - 1);
-    for (int j = 0; j < slices; ++j) m->faces.push_back({0u, ring(1, j + 1), ring(1, j)});
-    for (int i = 1; i < stacks - 1; ++i)
-        for (int j = 0; j < slices; ++j) {
-            m->faces.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
-            m->faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
-        }
-    for (int j = 0; j < slices; ++j) m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
-    return m;
-}
-
 // Requires the packet's answers to equal the single-ray answers; returns how many rays hit.
 int require_same_as_single(const Geometry& g, const Ray* rays, int n, double tmax) {
     RayStats packet_stats, single_stats;
@@ -82,7 +59,8 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
     for (int s = 0; s < scenes; ++s) {
         const double size = rng.log_uniform(-3, 3);
         SceneSpec spec = random_scene(rng, rng.integer(1, 300), size);
-        if (s % 3 == 0) spec.shapes.push_back(mesh(uv_sphere(40, 21, rng.in_box(Vec3(-size), Vec3(size)), 0.4 * size)));
+        if (s % 3 == 0)
+            spec.shapes.push_back(mesh(perturbed_uv_sphere(21, 40, rng, rng.in_box(Vec3(-size), Vec3(size)), 0, 0.4 * size)));
         if (s % 5 == 0) spec.shapes.push_back(plane(rng.unit_vector(), rng.uniform(-size, size)));
         auto g = build_ok(spec, true);
         REQUIRE(g);
@@ -110,10 +88,10 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
 }
 
 TEST_CASE("packets from a camera inside a dense mesh, and through its silhouette") {
-    SceneSpec spec = scene_of({mesh(uv_sphere(200, 101, {0, 0, 0}, 1))});
+    Rng rng(5);
+    SceneSpec spec = scene_of({mesh(perturbed_uv_sphere(101, 200, rng, Vec3(0), 0))});
     auto g = build_ok(spec, true);
     REQUIRE(g);
-    Rng rng(5);
     int hits = 0;
     for (int i = 0; i < ray_budget(20000); ++i) {
         // Outside looking at it (many rays graze the silhouette), or inside looking out.
