@@ -30,7 +30,7 @@ bool read_vec3_list(BlockReader& r, BlockContext& ctx, const ListValue& list, co
             const double* p = list.packed->values.data() + 3 * i;
             v = {p[0], p[1], p[2]};
         } else {
-            const Value& e = list.items[i];
+            const Value e = list.at(i, ctx.sources);  // a packed list of vector2 lands here too
             if (!e.is(ValueType::Vector3)) {
                 r.fail(e.span(), std::string(noun) + " " + std::to_string(i) + " must be a vector3, found " +
                                      type_name(e.type()));
@@ -59,7 +59,7 @@ bool read_faces(BlockReader& r, BlockContext& ctx, const ListValue& list, size_t
             const double* p = list.packed->values.data() + 3 * i;
             f = {p[0], p[1], p[2]};
         } else {
-            const Value& e = list.items[i];
+            const Value e = list.at(i, ctx.sources);  // a packed list of vector2 lands here too
             if (!e.is(ValueType::Vector3)) {
                 r.fail(e.span(), "face " + std::to_string(i) + " must be a vector3 of vertex indices, found " +
                                      type_name(e.type()));
