@@ -60,8 +60,8 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
     for (const BenchRow& r : rows)
         out << r.knob << ',' << r.value << ',' << fmt("%.6f", r.wall_seconds) << ','
             << fmt("%.6f", r.cpu_seconds) << ',' << r.stats.camera_rays << ',' << r.stats.shadow_rays << ','
-            << r.stats.reflection_rays << ',' << r.stats.refraction_rays << ',' << r.stats.ray_queries() << ','
-            << fmt("%.9g", r.error.rmse) << ',' << fmt("%.6g", r.error.psnr) << ','
+            << r.stats.reflection_rays << ',' << r.stats.refraction_rays << ',' << r.stats.ray_queries()
+            << ',' << fmt("%.9g", r.error.rmse) << ',' << fmt("%.6g", r.error.psnr) << ','
             << fmt("%.9g", r.error.max_abs_error) << ',' << fmt("%.9g", r.error.ssim) << ','
             << (r.pareto ? 1 : 0) << '\n';
     return out.str();
@@ -72,12 +72,14 @@ std::string bench_markdown(const std::vector<BenchRow>& rows, const BenchInfo& i
     out << "# wsd bench: " << info.scene << "\n\n"
         << "- image: " << info.width << " x " << info.height << " pixels\n"
         << "- scene's own settings: " << info.scene_settings << "\n"
-        << "- reference: " << info.reference_settings << " (" << fmt("%.3f", info.reference_seconds) << " s)\n"
+        << "- reference: " << info.reference_settings << " (" << fmt("%.3f", info.reference_seconds)
+        << " s)\n"
         << "- times: median of " << info.repeat << " run" << (info.repeat == 1 ? "" : "s")
         << "; CPU time is the whole process (all threads)\n"
         << "- each knob is varied alone; the others keep the scene's settings\n";
     for (const std::string& note : info.notes) out << "- " << note << "\n";
-    out << "\n| knob | value | wall s | CPU s | camera rays | shadow rays | reflection rays | refraction rays "
+    out << "\n| knob | value | wall s | CPU s | camera rays | shadow rays | reflection rays | refraction "
+           "rays "
            "| RMSE | PSNR dB | SSIM | Pareto |\n"
         << "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
     for (const BenchRow& r : rows)

@@ -11,20 +11,20 @@
 namespace wsd::app {
 
 struct BenchRow {
-    std::string knob;    // "supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights"
-    std::string value;   // as the user would type it ("16", "on")
+    std::string knob;   // "supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights"
+    std::string value;  // as the user would type it ("16", "on")
     double wall_seconds = 0;  // median over the repeats
     double cpu_seconds = 0;   // median over the repeats (process CPU time: all threads)
     render::RayStats stats;
-    ImageMetrics error;       // against the reference
-    bool pareto = false;      // no other row is both faster and more accurate
+    ImageMetrics error;   // against the reference
+    bool pareto = false;  // no other row is both faster and more accurate
 };
 
 struct BenchInfo {
     std::string scene;
     int width = 0, height = 0;
     int repeat = 1;
-    std::string scene_settings;      // e.g. "supersamples 16, light samples 4x4, max depth 8"
+    std::string scene_settings;  // e.g. "supersamples 16, light samples 4x4, max depth 8"
     std::string reference_settings;
     double reference_seconds = 0;
     std::vector<std::string> notes;  // knobs skipped and why

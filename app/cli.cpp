@@ -1,10 +1,9 @@
 // The command line: one CLI11 subcommand per command, value checks that make bad values usage
 // errors (status 2), and the mapping of CLI11's own errors onto wsd's exit statuses.
+#include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <iostream>
 #include <stdexcept>
-
-#include <CLI/CLI.hpp>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -59,13 +58,17 @@ int run_cli(int argc, char** argv) {
     CLI::App app{"wsd: a scene-description language and a Whitted ray tracer", "wsd"};
     app.set_version_flag("--version", std::string("wsd ") + WSD_VERSION);
     app.require_subcommand(1);
-    app.footer("Exit status: 0 ok, 1 input errors, 2 usage errors, 3 unreadable input or "
-               "unwritable output, 4 internal error, 130/143 interrupted.");
+    app.footer(
+        "Exit status: 0 ok, 1 input errors, 2 usage errors, 3 unreadable input or "
+        "unwritable output, 4 internal error, 130/143 interrupted.");
 
     CheckArgs check_args;
-    CLI::App* check = app.add_subcommand("check", "parse, evaluate, load referenced files and validate; render nothing");
-    check->add_option("FILE", check_args.files, "scene files (.wsd) or fragments (.wsdi); - = stdin")->required();
-    check->add_flag("--effects", check_args.effects, "list the effects the scene uses and the objects that call for each");
+    CLI::App* check =
+        app.add_subcommand("check", "parse, evaluate, load referenced files and validate; render nothing");
+    check->add_option("FILE", check_args.files, "scene files (.wsd) or fragments (.wsdi); - = stdin")
+        ->required();
+    check->add_flag("--effects", check_args.effects,
+                    "list the effects the scene uses and the objects that call for each");
 
     AstArgs ast_args;
     CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
@@ -81,12 +84,14 @@ int run_cli(int argc, char** argv) {
     render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
         ->check(CLI::Range(0, 4096));
     render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
-    render->add_flag("--general", render_args.general,
-                     "use the general integrator with every effect enabled (same image, slower; for checking)");
+    render->add_flag(
+        "--general", render_args.general,
+        "use the general integrator with every effect enabled (same image, slower; for checking)");
     render->add_flag("--stats", render_args.stats, "print render statistics at the end");
     render->add_option("--stats-json", render_args.stats_json, "write render statistics as JSON");
     render->add_flag("-q,--quiet", render_args.quiet, "no progress output");
-    render->add_flag("--adaptive-lights", render_args.adaptive_lights, "adaptive sampling on every area light");
+    render->add_flag("--adaptive-lights", render_args.adaptive_lights,
+                     "adaptive sampling on every area light");
     render->add_option("--tile", render_args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
     render->add_option("--region", render_args.region, "render the pixels x0,y0,x1,y1 (half-open)");
 
@@ -104,21 +109,30 @@ int run_cli(int argc, char** argv) {
     BenchArgs bench_args;
     CLI::App* bench = app.add_subcommand("bench", "measure error against time for each setting");
     bench->add_option("SCENE", bench_args.scene, "scene file")->required();
-    bench->add_option("-o,--output", bench_args.dir, "directory for bench.csv, bench.md, bench.svg (default .)");
-    bench->add_option("--repeat", bench_args.repeat, "runs per setting; the median is reported (default 3, or 1 with --quick)")
+    bench->add_option("-o,--output", bench_args.dir,
+                      "directory for bench.csv, bench.md, bench.svg (default .)");
+    bench
+        ->add_option("--repeat", bench_args.repeat,
+                     "runs per setting; the median is reported (default 3, or 1 with --quick)")
         ->check(CLI::Range(1, 1000));
-    bench->add_flag("--quick", bench_args.quick, "a small sweep at a small size (at most 32 pixels a side; for tests)");
-    bench->add_option("--reference-supersamples", bench_args.reference_supersamples,
-                      "supersamples of the reference image (default 256; the reference uses another seed)")
+    bench->add_flag("--quick", bench_args.quick,
+                    "a small sweep at a small size (at most 32 pixels a side; for tests)");
+    bench
+        ->add_option("--reference-supersamples", bench_args.reference_supersamples,
+                     "supersamples of the reference image (default 256; the reference uses another seed)")
         ->check(CLI::Range(1, max_supersamples));
-    bench->add_option("--reference-light-samples", bench_args.reference_light_samples,
-                      "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
+    bench
+        ->add_option("--reference-light-samples", bench_args.reference_light_samples,
+                     "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
         ->check(CLI::Range(1, max_light_grid_side));
-    bench->add_option("--reference-depth", bench_args.reference_depth,
-                      "max depth of the reference (default max(scene, 10))")
+    bench
+        ->add_option("--reference-depth", bench_args.reference_depth,
+                     "max depth of the reference (default max(scene, 10))")
         ->check(CLI::Range(0, max_depth_limit));
-    bench->add_option("--threads", bench_args.threads, "render threads; 0 = all cores")->check(CLI::Range(0, 4096));
-    bench->add_option("--width", bench_args.width, "image width (default the scene's)")->check(CLI::Range(1, max_image_side));
+    bench->add_option("--threads", bench_args.threads, "render threads; 0 = all cores")
+        ->check(CLI::Range(0, 4096));
+    bench->add_option("--width", bench_args.width, "image width (default the scene's)")
+        ->check(CLI::Range(1, max_image_side));
     bench->add_option("--height", bench_args.height, "image height")->check(CLI::Range(1, max_image_side));
     bench->add_flag("-q,--quiet", bench_args.quiet, "no progress output");
 
@@ -129,7 +143,8 @@ int run_cli(int argc, char** argv) {
             app.exit(e);  // --help, --version
             return exit_code::ok;
         }
-        std::cerr << "wsd: error: " << e.what() << "\nRun `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
+        std::cerr << "wsd: error: " << e.what()
+                  << "\nRun `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
         return exit_code::usage;
     }
 

@@ -56,14 +56,15 @@ struct RunResult {
 };
 
 int run_setting(const std::string& path, const std::string& text, const SceneOverrides& overrides,
-                const BenchArgs& args, int repeat, const CancelOnSignal& signals,
-                const std::string& label, RunResult& out) {
+                const BenchArgs& args, int repeat, const CancelOnSignal& signals, const std::string& label,
+                RunResult& out) {
     lang::LoadOptions load_options;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) { overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int s = load_scene_text(path, text, load_options, sources, loaded); s != exit_code::ok) return s;
+    if (const int s = load_scene_text(path, text, load_options, sources, loaded); s != exit_code::ok)
+        return s;
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
     std::vector<double> walls, cpus;
     for (int r = 0; r < repeat; ++r) {
@@ -71,7 +72,9 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
         render::RenderOptions options;
         options.threads = args.threads;
         options.cancel = signals.flag();
-        options.progress = [&](double fraction, const render::RayStats& so_far) { progress.update(fraction, so_far); };
+        options.progress = [&](double fraction, const render::RayStats& so_far) {
+            progress.update(fraction, so_far);
+        };
         const double cpu0 = cpu_seconds_now();
         const auto wall0 = std::chrono::steady_clock::now();
         render::RenderResult result = render::render(*loaded->scene, options);
@@ -136,7 +139,8 @@ int prepare_directory(const std::string& dir, std::string& error) {
     if (std::filesystem::is_directory(dir, ec)) return exit_code::ok;
     // The directory itself is created; a missing parent is not (wsd-cli.md, exit status 3).
     if (!std::filesystem::create_directory(dir, ec)) {
-        error = "cannot create output directory '" + dir + "': " + (ec ? ec.message() : "it exists and is not a directory");
+        error = "cannot create output directory '" + dir +
+                "': " + (ec ? ec.message() : "it exists and is not a directory");
         return exit_code::io;
     }
     return exit_code::ok;
@@ -156,7 +160,8 @@ int run_bench(const BenchArgs& args) {
         options.build = false;
         lang::SourceManager sources;
         std::optional<lang::LoadedScene> loaded;
-        if (const int s = load_scene_text(args.scene, text, options, sources, loaded); s != exit_code::ok) return s;
+        if (const int s = load_scene_text(args.scene, text, options, sources, loaded); s != exit_code::ok)
+            return s;
         const render::Settings& st = loaded->spec.settings;
         facts.width = st.width;
         facts.height = st.height;
@@ -207,18 +212,21 @@ int run_bench(const BenchArgs& args) {
     reference.adaptive_supersampling = false;
     reference.adaptive_lights = false;
     reference.bailout = 0.0;
-    info.reference_settings = "supersamples " + std::to_string(*reference.supersamples) +
-                              (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" +
-                                                       std::to_string(ref_light)
-                                                 : std::string()) +
-                              ", max depth " + std::to_string(*reference.max_depth) +
-                              ", no adaptive sampling, bailout 0, seed " + std::to_string(*reference.seed);
+    info.reference_settings =
+        "supersamples " + std::to_string(*reference.supersamples) +
+        (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" + std::to_string(ref_light)
+                           : std::string()) +
+        ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling, bailout 0, seed " +
+        std::to_string(*reference.seed);
 
     CancelOnSignal signals;
     const bool verbose = !args.quiet;
-    if (verbose) std::cerr << "bench: reference (" << info.reference_settings << ") at " << width << "x" << height << "\n";
+    if (verbose)
+        std::cerr << "bench: reference (" << info.reference_settings << ") at " << width << "x" << height
+                  << "\n";
     RunResult ref;
-    if (const int s = run_setting(args.scene, text, reference, args, 1, signals, "bench reference", ref); s != exit_code::ok) {
+    if (const int s = run_setting(args.scene, text, reference, args, 1, signals, "bench reference", ref);
+        s != exit_code::ok) {
         if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
         return s;
     }

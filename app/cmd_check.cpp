@@ -20,10 +20,14 @@ bool is_fragment(const std::string& path) {
 // Severity order of statuses for "the worst over all files".
 int rank(int status) {
     switch (status) {
-        case exit_code::ok: return 0;
-        case exit_code::input_error: return 1;
-        case exit_code::io: return 2;
-        default: return 3;
+        case exit_code::ok:
+            return 0;
+        case exit_code::input_error:
+            return 1;
+        case exit_code::io:
+            return 2;
+        default:
+            return 3;
     }
 }
 
@@ -40,9 +44,8 @@ int run_check(const CheckArgs& args) {
         const int status = load_scene_file(path, options, sources, scene);
         if (status == exit_code::ok) {
             const lang::CheckSummary& s = scene->summary;
-            std::cout << display_path(path) << ": ok \u2014 " << s.objects << " objects, "
-                      << s.triangles << " triangles, " << s.lights << " lights, " << s.materials
-                      << " materials\n";
+            std::cout << display_path(path) << ": ok \u2014 " << s.objects << " objects, " << s.triangles
+                      << " triangles, " << s.lights << " lights, " << s.materials << " materials\n";
             if (args.effects) print_effects(*scene, std::cout);
         }
         std::cout << std::flush;

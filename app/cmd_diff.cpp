@@ -16,8 +16,8 @@ namespace wsd::app {
 namespace {
 
 bool is_8bit(render::ImageFormat f) {
-    return f == render::ImageFormat::Png || f == render::ImageFormat::Jpeg ||
-           f == render::ImageFormat::Bmp || f == render::ImageFormat::Tga;
+    return f == render::ImageFormat::Png || f == render::ImageFormat::Jpeg || f == render::ImageFormat::Bmp ||
+           f == render::ImageFormat::Tga;
 }
 
 int read_display(const std::string& path, DisplayImage& image) {
@@ -52,8 +52,8 @@ int run_diff(const DiffArgs& args) {
     if (a.width != b.width || a.height != b.height)
         return fail(exit_code::input_error, "the images have different sizes: '" + args.a + "' is " +
                                                 std::to_string(a.width) + "x" + std::to_string(a.height) +
-                                                ", '" + args.b + "' is " + std::to_string(b.width) +
-                                                "x" + std::to_string(b.height));
+                                                ", '" + args.b + "' is " + std::to_string(b.width) + "x" +
+                                                std::to_string(b.height));
     const ImageMetrics m = compare(a, b);
     std::cout << "RMSE: " << number(m.rmse) << '\n'
               << "PSNR: " << number(m.psnr) << (std::isinf(m.psnr) ? "" : " dB") << '\n'

@@ -23,8 +23,8 @@ struct Tile {
 };
 
 std::string describe(const render::Region& r) {
-    return "x " + std::to_string(r.x0) + ".." + std::to_string(r.x1 - 1) + ", y " +
-           std::to_string(r.y0) + ".." + std::to_string(r.y1 - 1);
+    return "x " + std::to_string(r.x0) + ".." + std::to_string(r.x1 - 1) + ", y " + std::to_string(r.y0) +
+           ".." + std::to_string(r.y1 - 1);
 }
 
 bool intersects(const render::Region& a, const render::Region& b) {
@@ -36,9 +36,9 @@ int check_consistency(const std::vector<Tile>& tiles) {
     const Tile& first = tiles.front();
     for (const Tile& t : tiles) {
         if (t.meta.scene_hash != first.meta.scene_hash)
-            return fail(exit_code::input_error, "tile '" + t.path + "' was rendered from a different scene than '" +
-                                                    first.path + "' (scene hash " + t.meta.scene_hash +
-                                                    " vs " + first.meta.scene_hash + ")");
+            return fail(exit_code::input_error,
+                        "tile '" + t.path + "' was rendered from a different scene than '" + first.path +
+                            "' (scene hash " + t.meta.scene_hash + " vs " + first.meta.scene_hash + ")");
         if (t.meta.seed != first.meta.seed)
             return fail(exit_code::input_error, "tile '" + t.path + "' was rendered with seed " +
                                                     std::to_string(t.meta.seed) + ", but '" + first.path +
@@ -47,10 +47,12 @@ int check_consistency(const std::vector<Tile>& tiles) {
             return fail(exit_code::input_error,
                         "tile '" + t.path + "' belongs to a " + std::to_string(t.meta.full_width) + "x" +
                             std::to_string(t.meta.full_height) + " image, but '" + first.path + "' to a " +
-                            std::to_string(first.meta.full_width) + "x" + std::to_string(first.meta.full_height) + " one");
+                            std::to_string(first.meta.full_width) + "x" +
+                            std::to_string(first.meta.full_height) + " one");
         if (t.meta.settings_hash != first.meta.settings_hash)
-            return fail(exit_code::input_error, "tile '" + t.path + "' was rendered with different settings than '" +
-                                                    first.path + "'");
+            return fail(
+                exit_code::input_error,
+                "tile '" + t.path + "' was rendered with different settings than '" + first.path + "'");
     }
     return exit_code::ok;
 }
@@ -66,14 +68,16 @@ int check_coverage(const std::vector<Tile>& tiles) {
                                                         tiles[j].path + "' (" + describe(a) + ")");
             if (intersects(a, b))
                 return fail(exit_code::input_error, "tile '" + tiles[i].path + "' (" + describe(a) +
-                                                        ") overlaps '" + tiles[j].path + "' (" + describe(b) + ")");
+                                                        ") overlaps '" + tiles[j].path + "' (" + describe(b) +
+                                                        ")");
         }
     // With no overlaps, the image is covered iff the areas add up; otherwise find a gap on the
     // grid of tile edges (each cell of that grid is wholly covered or wholly not).
     const int w = tiles.front().meta.full_width, h = tiles.front().meta.full_height;
     long long area = 0;
     for (const Tile& t : tiles)
-        area += static_cast<long long>(t.meta.region.x1 - t.meta.region.x0) * (t.meta.region.y1 - t.meta.region.y0);
+        area += static_cast<long long>(t.meta.region.x1 - t.meta.region.x0) *
+                (t.meta.region.y1 - t.meta.region.y0);
     if (area == static_cast<long long>(w) * h) return exit_code::ok;
     std::set<int> xs{0, w}, ys{0, h};
     for (const Tile& t : tiles) {
@@ -84,7 +88,8 @@ int check_coverage(const std::vector<Tile>& tiles) {
     for (auto y = ys.begin(); gap.empty() && std::next(y) != ys.end(); ++y)
         for (auto x = xs.begin(); gap.empty() && std::next(x) != xs.end(); ++x) {
             const render::Region cell{*x, *y, *std::next(x), *std::next(y)};
-            const bool covered = std::any_of(tiles.begin(), tiles.end(), [&](const Tile& t) { return intersects(t.meta.region, cell); });
+            const bool covered = std::any_of(tiles.begin(), tiles.end(),
+                                             [&](const Tile& t) { return intersects(t.meta.region, cell); });
             if (!covered) gap = describe(cell);
         }
     std::string missing;
@@ -93,10 +98,12 @@ int check_coverage(const std::vector<Tile>& tiles) {
         std::set<int> present;
         for (const Tile& t : tiles) present.insert(t.meta.tile_index);
         for (int i = 1; i <= count; ++i)
-            if (!present.count(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(count);
+            if (!present.count(i))
+                missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(count);
     }
-    return fail(exit_code::input_error, "the tiles do not cover the image: pixels " + gap + " are missing" +
-                                            (missing.empty() ? std::string() : " (missing tile " + missing + ")"));
+    return fail(exit_code::input_error,
+                "the tiles do not cover the image: pixels " + gap + " are missing" +
+                    (missing.empty() ? std::string() : " (missing tile " + missing + ")"));
 }
 
 }  // namespace
@@ -104,8 +111,9 @@ int check_coverage(const std::vector<Tile>& tiles) {
 int run_merge(const MergeArgs& args) {
     std::string error;
     if (render::format_from_extension(args.output) == render::ImageFormat::Unknown)
-        return fail(exit_code::usage, "cannot write '" + args.output +
-                                          "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+        return fail(exit_code::usage,
+                    "cannot write '" + args.output +
+                        "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
     if (!output_directory_exists(args.output, error)) return fail(exit_code::io, error);
 
     std::vector<Tile> tiles;
@@ -129,8 +137,10 @@ int run_merge(const MergeArgs& args) {
         const render::Region& r = t.meta.region;
         const size_t row = static_cast<size_t>(r.x1 - r.x0) * 3;
         for (int y = r.y0; y < r.y1; ++y)
-            std::copy_n(t.film.rgb.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y - r.y0) * row), row,
-                        image.rgb.begin() + static_cast<std::ptrdiff_t>((static_cast<size_t>(y) * image.width + r.x0) * 3));
+            std::copy_n(t.film.rgb.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y - r.y0) * row),
+                        row,
+                        image.rgb.begin() +
+                            static_cast<std::ptrdiff_t>((static_cast<size_t>(y) * image.width + r.x0) * 3));
     }
     if (!render::write_image(args.output, image, error)) return fail(exit_code::io, error);
     return exit_code::ok;

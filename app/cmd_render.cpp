@@ -26,7 +26,7 @@ bool parse_whole_int(std::string_view text, long long& value) {
 }
 
 struct TileRequest {
-    int index = 0, count = 0;       // --tile I/N
+    int index = 0, count = 0;              // --tile I/N
     std::optional<render::Region> region;  // --region (or the tile's rows once the size is known)
 };
 
@@ -65,8 +65,8 @@ bool parse_region(const std::string& text, TileRequest& tile, std::string& error
         error = "--region " + text + ": the rectangle is empty (need x0 < x1 and y0 < y1)";
         return false;
     }
-    tile.region = render::Region{static_cast<int>(v[0]), static_cast<int>(v[1]),
-                                 static_cast<int>(v[2]), static_cast<int>(v[3])};
+    tile.region = render::Region{static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2]),
+                                 static_cast<int>(v[3])};
     return true;
 }
 
@@ -97,8 +97,8 @@ bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& e
     } else if (tile.region) {
         const render::Region& r = *tile.region;
         if (r.x1 > s.width || r.y1 > s.height) {
-            error = "--region lies outside the " + std::to_string(s.width) + "x" +
-                    std::to_string(s.height) + " image";
+            error = "--region lies outside the " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                    " image";
             return false;
         }
     }
@@ -119,8 +119,9 @@ int run_render(const RenderArgs& args) {
     const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
     const render::ImageFormat format = render::format_from_extension(output);
     if (format == render::ImageFormat::Unknown)
-        return fail(exit_code::usage, "cannot write '" + output +
-                                          "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+        return fail(exit_code::usage,
+                    "cannot write '" + output +
+                        "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
     if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
     if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
         return fail(exit_code::io, error);
@@ -131,7 +132,8 @@ int run_render(const RenderArgs& args) {
     load_options.adjust = [&](render::SceneSpec& spec) { args.overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_scene_file(args.scene, load_options, sources, loaded); status != exit_code::ok)
+    if (const int status = load_scene_file(args.scene, load_options, sources, loaded);
+        status != exit_code::ok)
         return status;
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
     const render::Settings& settings = loaded->spec.settings;
@@ -149,7 +151,9 @@ int run_render(const RenderArgs& args) {
     options.region = tile.region;
     options.adaptive_lights = args.adaptive_lights;
     options.cancel = signals.flag();
-    options.progress = [&](double fraction, const render::RayStats& so_far) { progress.update(fraction, so_far); };
+    options.progress = [&](double fraction, const render::RayStats& so_far) {
+        progress.update(fraction, so_far);
+    };
     const render::RenderResult result = render::render(*loaded->scene, options);
     progress.finish(!result.cancelled && !signals.cancelled());
     if (result.cancelled || signals.cancelled()) {
@@ -168,7 +172,8 @@ int run_render(const RenderArgs& args) {
         meta.tile_index = tile.index;
         meta.tile_count = tile.count;
         meta.scene = display_path(args.scene);
-        if (!write_file_atomic(output, encode_tile(result.film, meta), error)) return fail(exit_code::io, error);
+        if (!write_file_atomic(output, encode_tile(result.film, meta), error))
+            return fail(exit_code::io, error);
     } else if (!render::write_image(output, result.film, error)) {
         return fail(exit_code::io, error);
     }

@@ -54,13 +54,13 @@ int run_merge(const MergeArgs& args);
 struct BenchArgs {
     std::string scene;
     std::string dir = ".";
-    int repeat = 0;                      // 0: 3, or 1 with --quick
+    int repeat = 0;  // 0: 3, or 1 with --quick
     bool quick = false;
-    int reference_supersamples = 0;      // 0: 256
-    int reference_light_samples = 0;     // N: an N×N grid on every area light; 0: 16 (8 quick)
-    int reference_depth = -1;            // -1: max(scene's max_depth, 10)
+    int reference_supersamples = 0;   // 0: 256
+    int reference_light_samples = 0;  // N: an N×N grid on every area light; 0: 16 (8 quick)
+    int reference_depth = -1;         // -1: max(scene's max_depth, 10)
     int threads = 0;
-    int width = 0, height = 0;           // 0: the scene's (or the quick size)
+    int width = 0, height = 0;  // 0: the scene's (or the quick size)
     bool quiet = false;
 };
 int run_bench(const BenchArgs& args);

@@ -13,11 +13,16 @@ constexpr size_t max_listed = 12;  // a 1000-sphere scene should not print 1000 
 
 const char* kind_name(render::ShapeKind kind) {
     switch (kind) {
-        case render::ShapeKind::Sphere: return "sphere";
-        case render::ShapeKind::Box: return "box";
-        case render::ShapeKind::Triangle: return "triangle";
-        case render::ShapeKind::Plane: return "plane";
-        case render::ShapeKind::Mesh: return "mesh";
+        case render::ShapeKind::Sphere:
+            return "sphere";
+        case render::ShapeKind::Box:
+            return "box";
+        case render::ShapeKind::Triangle:
+            return "triangle";
+        case render::ShapeKind::Plane:
+            return "plane";
+        case render::ShapeKind::Mesh:
+            return "mesh";
     }
     return "object";
 }

@@ -2,6 +2,9 @@
 // FNV-1a hash used by tile metadata, and the process's peak memory for the statistics.
 #include "app/io_util.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,9 +13,6 @@
 #include <iostream>
 #include <iterator>
 #include <sstream>
-
-#include <fcntl.h>
-#include <unistd.h>
 
 namespace wsd::app {
 
@@ -116,7 +116,9 @@ int fail(int status, const std::string& message) {
     return status;
 }
 
-void warn(const std::string& message) { std::cerr << "wsd: warning: " << message << '\n'; }
+void warn(const std::string& message) {
+    std::cerr << "wsd: warning: " << message << '\n';
+}
 
 uint64_t fnv1a64(std::string_view data, uint64_t seed) {
     uint64_t h = seed;

@@ -2,18 +2,18 @@
 // time printing; the bar is redrawn in place with '\r' and cleared by finish().
 #include "app/progress.h"
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-
-#include <unistd.h>
 
 namespace wsd::app {
 
 namespace {
 
-constexpr double bar_interval = 0.1;    // seconds between redraws on a terminal
-constexpr double line_interval = 5.0;   // seconds between lines otherwise
+constexpr double bar_interval = 0.1;   // seconds between redraws on a terminal
+constexpr double line_interval = 5.0;  // seconds between lines otherwise
 constexpr int bar_width = 30;
 
 std::string format_rate(double per_second) {
@@ -46,8 +46,7 @@ std::string format_duration(double seconds) {
 }
 
 ProgressReporter::ProgressReporter(ProgressMode mode, std::string label)
-    : mode_(mode), label_(std::move(label)), start_(std::chrono::steady_clock::now()),
-      last_print_(start_) {}
+    : mode_(mode), label_(std::move(label)), start_(std::chrono::steady_clock::now()), last_print_(start_) {}
 
 void ProgressReporter::update(double fraction, const render::RayStats& so_far) {
     if (mode_ == ProgressMode::None) return;
@@ -75,8 +74,7 @@ void ProgressReporter::finish(bool completed) {
 
 void ProgressReporter::print(double fraction, uint64_t rays, bool final_update) {
     fraction = std::fmin(std::fmax(fraction, 0.0), 1.0);
-    const double elapsed =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : -1;
     const double rate = elapsed > 0 ? static_cast<double>(rays) / elapsed : 0;
     char percent[16];
@@ -87,11 +85,11 @@ void ProgressReporter::print(double fraction, uint64_t rays, bool final_update) 
         bar.resize(bar_width, '.');
         std::cerr << '\r' << label_ << " [" << bar << "] " << percent << "  elapsed "
                   << format_duration(elapsed) << "  ETA "
-                  << (final_update ? std::string("0:00") : format_duration(eta)) << "  "
-                  << format_rate(rate) << "   " << std::flush;
+                  << (final_update ? std::string("0:00") : format_duration(eta)) << "  " << format_rate(rate)
+                  << "   " << std::flush;
     } else {
-        std::cerr << label_ << ": " << percent << " done, elapsed " << format_duration(elapsed)
-                  << ", ETA " << format_duration(eta) << ", " << format_rate(rate) << '\n'
+        std::cerr << label_ << ": " << percent << " done, elapsed " << format_duration(elapsed) << ", ETA "
+                  << format_duration(eta) << ", " << format_rate(rate) << '\n'
                   << std::flush;
     }
     printed_ = true;

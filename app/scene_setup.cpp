@@ -26,11 +26,12 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     }
 }
 
-std::string display_path(const std::string& path) { return path == "-" ? "<stdin>" : path; }
+std::string display_path(const std::string& path) {
+    return path == "-" ? "<stdin>" : path;
+}
 
-int load_scene_text(const std::string& path, const std::string& text,
-                    const lang::LoadOptions& options, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& scene) {
+int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene) {
     lang::Diagnostics diags;
     scene = lang::load_scene(display_path(path), text, sources, diags, options);
     if (!diags.all().empty()) std::cerr << lang::format_diagnostics(diags, sources);
@@ -42,8 +43,8 @@ int load_scene_text(const std::string& path, const std::string& text,
     return exit_code::ok;
 }
 
-int load_scene_file(const std::string& path, const lang::LoadOptions& options,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene) {
+int load_scene_file(const std::string& path, const lang::LoadOptions& options, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& scene) {
     std::string text, error;
     if (!read_input_file(path, text, error)) return fail(exit_code::io, error);
     return load_scene_text(path, text, options, sources, scene);

@@ -35,13 +35,12 @@ std::string display_path(const std::string& path);
 
 // Reads `path` ("-" = stdin) and loads it. Diagnostics go to stderr. Returns an exit status:
 // 0 with `scene` set, 1 for scene errors, 3 when the file cannot be read.
-int load_scene_file(const std::string& path, const lang::LoadOptions& options,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene);
+int load_scene_file(const std::string& path, const lang::LoadOptions& options, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& scene);
 
 // Same, from text already read (bench loads one text many times).
-int load_scene_text(const std::string& path, const std::string& text,
-                    const lang::LoadOptions& options, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& scene);
+int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene);
 
 // FNV-1a 64 of every source file the load read (the scene and its includes), in order.
 uint64_t scene_text_hash(const lang::SourceManager& sources);

@@ -38,9 +38,13 @@ CancelOnSignal::~CancelOnSignal() {
     sigaction(SIGTERM, &previous_term, nullptr);
 }
 
-const std::atomic<bool>* CancelOnSignal::flag() const { return &cancel_flag; }
+const std::atomic<bool>* CancelOnSignal::flag() const {
+    return &cancel_flag;
+}
 
-bool CancelOnSignal::cancelled() const { return cancel_flag.load(); }
+bool CancelOnSignal::cancelled() const {
+    return cancel_flag.load();
+}
 
 int CancelOnSignal::exit_status() const {
     if (received_signal == SIGINT) return exit_code::sigint;

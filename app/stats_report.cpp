@@ -1,11 +1,12 @@
 // Formatting of render statistics. Percentages guard against zero tests; JSON numbers are
 // printed with enough digits to round-trip, strings are escaped.
 #include "app/stats_report.h"
-#include "app/io_util.h"
 
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+
+#include "app/io_util.h"
 
 namespace wsd::app {
 
@@ -30,14 +31,12 @@ std::string json_number(double v) {
 }
 
 double mrays_per_second(const RenderReport& r) {
-    return r.render_seconds > 0 ? static_cast<double>(r.stats.ray_queries()) / r.render_seconds / 1e6
-                                : 0.0;
+    return r.render_seconds > 0 ? static_cast<double>(r.stats.ray_queries()) / r.render_seconds / 1e6 : 0.0;
 }
 
 void row(std::ostringstream& out, const char* name, uint64_t tests, uint64_t hits, bool has_hits) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "%-24s %16llu %16s %12s\n", name,
-                  static_cast<unsigned long long>(tests),
+    std::snprintf(buf, sizeof buf, "%-24s %16llu %16s %12s\n", name, static_cast<unsigned long long>(tests),
                   has_hits ? std::to_string(hits).c_str() : "-",
                   has_hits ? percent(hits, tests).c_str() : "-");
     out << buf;
@@ -55,17 +54,19 @@ std::string stats_table(const RenderReport& r) {
     const std::string rule(72, '-');
     const render::RayStats& s = r.stats;
     std::ostringstream out;
-    out << rule << '\n' << "Render statistics: " << r.scene << '\n'
+    out << rule << '\n'
+        << "Render statistics: " << r.scene << '\n'
         << "Image resolution " << r.width << " x " << r.height;
     if (r.region_width != r.width || r.region_height != r.height)
         out << " (rendered " << r.region_width << " x " << r.region_height << ")";
     out << '\n' << rule << '\n';
     const uint64_t pixels = static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height);
     line(out, "Pixels:", std::to_string(pixels));
-    line(out, "Camera rays:", std::to_string(s.camera_rays) + "  (" +
-                                  (pixels ? fixed(static_cast<double>(s.camera_rays) / static_cast<double>(pixels), 2)
-                                          : std::string("-")) +
-                                  " per pixel)");
+    line(out, "Camera rays:",
+         std::to_string(s.camera_rays) + "  (" +
+             (pixels ? fixed(static_cast<double>(s.camera_rays) / static_cast<double>(pixels), 2)
+                     : std::string("-")) +
+             " per pixel)");
     line(out, "Shadow rays:", std::to_string(s.shadow_rays));
     line(out, "  answered by shaft alone:", std::to_string(s.shaft_answered_rays));
     line(out, "Reflected rays:", std::to_string(s.reflection_rays));
@@ -94,11 +95,12 @@ std::string stats_table(const RenderReport& r) {
     out << rule << '\n';
     line(out, "Parse time:", fixed(r.parse_seconds, 3) + " s");
     line(out, "Build time:", fixed(r.build_seconds, 3) + " s");
-    line(out, "Render time:", fixed(r.render_seconds, 3) + " s  (" +
-                                  (r.threads > 0 ? std::to_string(r.threads) : std::string("all")) +
-                                  " threads)");
+    line(out, "Render time:",
+         fixed(r.render_seconds, 3) + " s  (" +
+             (r.threads > 0 ? std::to_string(r.threads) : std::string("all")) + " threads)");
     line(out, "Speed:", fixed(mrays_per_second(r), 3) + " Mrays/s");
-    line(out, "Peak memory:", fixed(static_cast<double>(r.peak_memory_bytes) / (1024.0 * 1024.0), 1) + " MiB");
+    line(out,
+         "Peak memory:", fixed(static_cast<double>(r.peak_memory_bytes) / (1024.0 * 1024.0), 1) + " MiB");
     out << rule << '\n';
     return out.str();
 }

@@ -12,7 +12,7 @@ namespace wsd::app {
 
 struct RenderReport {
     std::string scene;
-    int width = 0, height = 0;            // the full image
+    int width = 0, height = 0;                // the full image
     int region_width = 0, region_height = 0;  // the pixels rendered (a tile's size)
     int supersamples = 1;
     int threads = 0;

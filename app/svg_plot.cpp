@@ -15,7 +15,8 @@ namespace {
 
 constexpr double plot_w = 720, plot_h = 480;
 constexpr double left = 80, right = 220, top = 50, bottom = 60;  // margins; legend on the right
-const char* const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+const char* const palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                               "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
 
 std::string num(double v) {
     char buf[32];
@@ -69,12 +70,23 @@ std::string xml_escape(const std::string& text) {
     std::string out;
     for (const char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -84,7 +96,9 @@ std::vector<std::pair<size_t, size_t>> pareto_front(const std::vector<PlotSeries
     std::vector<std::pair<size_t, size_t>> all;
     for (size_t s = 0; s < series.size(); ++s)
         for (size_t p = 0; p < series[s].points.size(); ++p) all.emplace_back(s, p);
-    auto at = [&](const std::pair<size_t, size_t>& i) -> const PlotPoint& { return series[i.first].points[i.second]; };
+    auto at = [&](const std::pair<size_t, size_t>& i) -> const PlotPoint& {
+        return series[i.first].points[i.second];
+    };
     std::vector<std::pair<size_t, size_t>> front;
     for (const auto& i : all) {
         const PlotPoint& a = at(i);
@@ -118,7 +132,8 @@ std::string svg_log_log_plot(const std::vector<PlotSeries>& series, const PlotLa
         }
     auto any_nonpositive = [&](double PlotPoint::*member) {
         return std::any_of(series.begin(), series.end(), [&](const PlotSeries& s) {
-            return std::any_of(s.points.begin(), s.points.end(), [&](const PlotPoint& p) { return !(p.*member > 0); });
+            return std::any_of(s.points.begin(), s.points.end(),
+                               [&](const PlotPoint& p) { return !(p.*member > 0); });
         });
     };
     const bool any_floor_x = any_nonpositive(&PlotPoint::x), any_floor_y = any_nonpositive(&PlotPoint::y);
@@ -128,23 +143,25 @@ std::string svg_log_log_plot(const std::vector<PlotSeries>& series, const PlotLa
     std::ostringstream out;
     out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
         << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << plot_w << "\" height=\"" << plot_h
-        << "\" viewBox=\"0 0 " << plot_w << " " << plot_h << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+        << "\" viewBox=\"0 0 " << plot_w << " " << plot_h
+        << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
         << "<title>" << xml_escape(labels.title) << "</title>\n"
         << "<rect x=\"0\" y=\"0\" width=\"" << plot_w << "\" height=\"" << plot_h << "\" fill=\"white\"/>\n"
-        << "<text x=\"" << num((left + plot_w - right) / 2) << "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">"
-        << xml_escape(labels.title) << "</text>\n";
+        << "<text x=\"" << num((left + plot_w - right) / 2)
+        << "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">" << xml_escape(labels.title) << "</text>\n";
     // Axes, grid and ticks.
     out << "<g class=\"axes\" stroke=\"black\">\n"
-        << "<line x1=\"" << left << "\" y1=\"" << plot_h - bottom << "\" x2=\"" << plot_w - right << "\" y2=\""
-        << plot_h - bottom << "\"/>\n"
-        << "<line x1=\"" << left << "\" y1=\"" << top << "\" x2=\"" << left << "\" y2=\"" << plot_h - bottom << "\"/>\n"
+        << "<line x1=\"" << left << "\" y1=\"" << plot_h - bottom << "\" x2=\"" << plot_w - right
+        << "\" y2=\"" << plot_h - bottom << "\"/>\n"
+        << "<line x1=\"" << left << "\" y1=\"" << top << "\" x2=\"" << left << "\" y2=\"" << plot_h - bottom
+        << "\"/>\n"
         << "</g>\n<g class=\"ticks\" font-size=\"10\">\n";
     for (const double t : ticks(ax)) {
         const double x = ax.map(t);
         out << "<line x1=\"" << num(x) << "\" y1=\"" << plot_h - bottom << "\" x2=\"" << num(x) << "\" y2=\""
             << plot_h - bottom + 5 << "\" stroke=\"black\"/>"
-            << "<line x1=\"" << num(x) << "\" y1=\"" << top << "\" x2=\"" << num(x) << "\" y2=\"" << plot_h - bottom
-            << "\" stroke=\"#dddddd\"/>"
+            << "<line x1=\"" << num(x) << "\" y1=\"" << top << "\" x2=\"" << num(x) << "\" y2=\""
+            << plot_h - bottom << "\" stroke=\"#dddddd\"/>"
             << "<text x=\"" << num(x) << "\" y=\"" << plot_h - bottom + 17 << "\" text-anchor=\"middle\">"
             << xml_escape(tick_label(t)) << "</text>\n";
     }
@@ -152,29 +169,32 @@ std::string svg_log_log_plot(const std::vector<PlotSeries>& series, const PlotLa
         const double y = ay.map(t);
         out << "<line x1=\"" << left - 5 << "\" y1=\"" << num(y) << "\" x2=\"" << left << "\" y2=\"" << num(y)
             << "\" stroke=\"black\"/>"
-            << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << plot_w - right << "\" y2=\"" << num(y)
-            << "\" stroke=\"#dddddd\"/>"
+            << "<line x1=\"" << left << "\" y1=\"" << num(y) << "\" x2=\"" << plot_w - right << "\" y2=\""
+            << num(y) << "\" stroke=\"#dddddd\"/>"
             << "<text x=\"" << left - 8 << "\" y=\"" << num(y + 3) << "\" text-anchor=\"end\">"
             << xml_escape(tick_label(t)) << "</text>\n";
     }
     out << "</g>\n"
         << "<text x=\"" << num((left + plot_w - right) / 2) << "\" y=\"" << plot_h - 15
         << "\" text-anchor=\"middle\">" << xml_escape(labels.x_axis) << "</text>\n"
-        << "<text x=\"18\" y=\"" << num((top + plot_h - bottom) / 2) << "\" text-anchor=\"middle\" transform=\"rotate(-90 18 "
-        << num((top + plot_h - bottom) / 2) << ")\">" << xml_escape(labels.y_axis) << "</text>\n";
+        << "<text x=\"18\" y=\"" << num((top + plot_h - bottom) / 2)
+        << "\" text-anchor=\"middle\" transform=\"rotate(-90 18 " << num((top + plot_h - bottom) / 2)
+        << ")\">" << xml_escape(labels.y_axis) << "</text>\n";
     // One path per series, with a marker at each point.
     for (size_t s = 0; s < clamped.size(); ++s) {
         const char* colour = palette[s % (sizeof palette / sizeof palette[0])];
         std::string d;
         for (size_t p = 0; p < clamped[s].points.size(); ++p)
-            d += (p ? " L " : "M ") + num(ax.map(clamped[s].points[p].x)) + " " + num(ay.map(clamped[s].points[p].y));
+            d += (p ? " L " : "M ") + num(ax.map(clamped[s].points[p].x)) + " " +
+                 num(ay.map(clamped[s].points[p].y));
         out << "<path class=\"series\" data-series=\"" << xml_escape(clamped[s].name) << "\" d=\"" << d
             << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\"/>\n";
         // Each point names its value beside it, so the picture reads without the table (and
         // without hovering, which an <img> in a README does not offer).
         for (const PlotPoint& p : clamped[s].points)
-            out << "<circle cx=\"" << num(ax.map(p.x)) << "\" cy=\"" << num(ay.map(p.y)) << "\" r=\"3\" fill=\""
-                << colour << "\"><title>" << xml_escape(clamped[s].name + " " + p.label) << "</title></circle>\n"
+            out << "<circle cx=\"" << num(ax.map(p.x)) << "\" cy=\"" << num(ay.map(p.y))
+                << "\" r=\"3\" fill=\"" << colour << "\"><title>"
+                << xml_escape(clamped[s].name + " " + p.label) << "</title></circle>\n"
                 << "<text class=\"value\" x=\"" << num(ax.map(p.x) + 5) << "\" y=\"" << num(ay.map(p.y) - 5)
                 << "\" font-size=\"9\" fill=\"" << colour << "\">" << xml_escape(p.label) << "</text>\n";
     }
@@ -201,9 +221,9 @@ std::string svg_log_log_plot(const std::vector<PlotSeries>& series, const PlotLa
             << num(y + 1) << "\">" << xml_escape(clamped[s].name) << "</text>\n";
     }
     const double py = top + 10 + 20.0 * static_cast<double>(clamped.size());
-    out << "<line x1=\"" << lx << "\" y1=\"" << num(py - 3) << "\" x2=\"" << lx + 14 << "\" y2=\"" << num(py - 3)
-        << "\" stroke=\"black\" stroke-dasharray=\"5,4\"/><text x=\"" << lx + 20 << "\" y=\"" << num(py + 1)
-        << "\">Pareto front</text>\n";
+    out << "<line x1=\"" << lx << "\" y1=\"" << num(py - 3) << "\" x2=\"" << lx + 14 << "\" y2=\""
+        << num(py - 3) << "\" stroke=\"black\" stroke-dasharray=\"5,4\"/><text x=\"" << lx + 20 << "\" y=\""
+        << num(py + 1) << "\">Pareto front</text>\n";
     if (any_floor_y)
         out << "<text x=\"" << lx << "\" y=\"" << num(py + 20) << "\" font-size=\"10\">error 0 drawn at "
             << xml_escape(tick_label(floor_y)) << "</text>\n";

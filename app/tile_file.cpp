@@ -1,7 +1,6 @@
 // Encoding and decoding tile files: PFM bytes plus the `WSDTILE` trailer. The trailer's JSON is
 // flat (numbers, strings, arrays of numbers), so a small hand parser reads it without a library.
 #include "app/tile_file.h"
-#include "app/io_util.h"
 
 #include <cctype>
 #include <cstring>
@@ -9,13 +8,17 @@
 #include <sstream>
 #include <vector>
 
+#include "app/io_util.h"
+
 namespace wsd::app {
 
 namespace {
 
 constexpr const char* trailer_tag = "WSDTILE ";
 
-std::string json_string(const std::string& s) { return "\"" + json_escape(s) + "\""; }
+std::string json_string(const std::string& s) {
+    return "\"" + json_escape(s) + "\"";
+}
 
 // A value of the trailer: a number, a string, or a list of numbers.
 struct JsonValue {
@@ -148,8 +151,7 @@ bool integer_field(const std::map<std::string, JsonValue>& fields, const char* k
 }  // namespace
 
 std::string encode_tile(const render::Film& film, const TileMeta& meta) {
-    std::string out = "PF\n" + std::to_string(film.width) + " " + std::to_string(film.height) +
-                      "\n-1.0\n";
+    std::string out = "PF\n" + std::to_string(film.width) + " " + std::to_string(film.height) + "\n-1.0\n";
     const size_t header = out.size();
     const size_t row_floats = static_cast<size_t>(film.width) * 3;
     out.resize(header + row_floats * film.height * sizeof(float));
@@ -165,8 +167,8 @@ std::string encode_tile(const render::Film& film, const TileMeta& meta) {
     }
     std::ostringstream json;
     json << "{\"format\":1,\"width\":" << meta.full_width << ",\"height\":" << meta.full_height
-         << ",\"region\":[" << meta.region.x0 << "," << meta.region.y0 << "," << meta.region.x1
-         << "," << meta.region.y1 << "],\"tile\":[" << meta.tile_index << "," << meta.tile_count
+         << ",\"region\":[" << meta.region.x0 << "," << meta.region.y0 << "," << meta.region.x1 << ","
+         << meta.region.y1 << "],\"tile\":[" << meta.tile_index << "," << meta.tile_count
          << "],\"seed\":" << meta.seed << ",\"scene_hash\":" << json_string(meta.scene_hash)
          << ",\"settings_hash\":" << json_string(meta.settings_hash)
          << ",\"scene\":" << json_string(meta.scene) << "}";
@@ -214,7 +216,8 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
         for (size_t i = 0; i < row_floats; ++i) {
             const char* src = bytes.data() + pos + (static_cast<size_t>(y) * row_floats + i) * 4;
             uint32_t bits = 0;
-            for (int b = 0; b < 4; ++b) bits |= static_cast<uint32_t>(static_cast<unsigned char>(src[b])) << (8 * b);
+            for (int b = 0; b < 4; ++b)
+                bits |= static_cast<uint32_t>(static_cast<unsigned char>(src[b])) << (8 * b);
             std::memcpy(&dst[i], &bits, sizeof bits);
         }
     }
@@ -238,9 +241,8 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
     const auto seed = fields.find("seed");
     if (!integer_field(fields, "width", meta.full_width) ||
         !integer_field(fields, "height", meta.full_height) || region == fields.end() ||
-        region->second.array.size() != 4 || scene_hash == fields.end() ||
-        settings_hash == fields.end() || seed == fields.end() ||
-        seed->second.kind != JsonValue::Kind::Number || seed->second.number < 0 ||
+        region->second.array.size() != 4 || scene_hash == fields.end() || settings_hash == fields.end() ||
+        seed == fields.end() || seed->second.kind != JsonValue::Kind::Number || seed->second.number < 0 ||
         seed->second.number > 4294967295.0) {
         error = "incomplete WSDTILE metadata";
         return false;
@@ -256,16 +258,15 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
     meta.scene_hash = scene_hash->second.text;
     meta.settings_hash = settings_hash->second.text;
     meta.seed = static_cast<uint32_t>(seed->second.number);
-    if (tile != fields.end() && tile->second.array.size() == 2 &&
-        tile->second.array[0] >= 0 && tile->second.array[0] <= 1e9 &&
-        tile->second.array[1] >= 0 && tile->second.array[1] <= 1e9) {
+    if (tile != fields.end() && tile->second.array.size() == 2 && tile->second.array[0] >= 0 &&
+        tile->second.array[0] <= 1e9 && tile->second.array[1] >= 0 && tile->second.array[1] <= 1e9) {
         meta.tile_index = static_cast<int>(tile->second.array[0]);
         meta.tile_count = static_cast<int>(tile->second.array[1]);
     }
     if (const auto scene = fields.find("scene"); scene != fields.end()) meta.scene = scene->second.text;
     const render::Region& g = meta.region;
-    if (g.x0 < 0 || g.y0 < 0 || g.x1 > meta.full_width || g.y1 > meta.full_height ||
-        g.x1 - g.x0 != w || g.y1 - g.y0 != h) {
+    if (g.x0 < 0 || g.y0 < 0 || g.x1 > meta.full_width || g.y1 > meta.full_height || g.x1 - g.x0 != w ||
+        g.y1 - g.y0 != h) {
         error = "WSDTILE region does not match the PFM size or lies outside the image";
         return false;
     }

@@ -16,8 +16,8 @@ struct TileMeta {
     std::string scene_hash;               // FNV-1a 64 of the scene text and every included file
     std::string settings_hash;            // FNV-1a 64 of every effective setting but the seed
     uint32_t seed = 0;
-    int tile_index = 0, tile_count = 0;   // from --tile I/N; 0 for --region
-    std::string scene;                    // the scene path as given, for messages
+    int tile_index = 0, tile_count = 0;  // from --tile I/N; 0 for --region
+    std::string scene;                   // the scene path as given, for messages
 };
 
 // The bytes of a tile file: PFM ("PF", bottom row first, little-endian floats) + trailer.

@@ -11,11 +11,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "render/geometry.h"
 #include "render/math.h"
@@ -56,12 +55,13 @@ std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, float radius) {
             m->faces.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
             m->faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
         }
-    for (int j = 0; j < slices; ++j) m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
+    for (int j = 0; j < slices; ++j)
+        m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
     return m;
 }
 
 struct Throughput {
-    double primary = 0, shadow = 0;  // rays per CPU-second
+    double primary = 0, shadow = 0;      // rays per CPU-second
     double packets4 = 0, packets16 = 0;  // primary rays per CPU-second in 2×2 and 4×4-pixel packets
     double boxes_primary = 0, prims_primary = 0;  // tests per primary ray
     double hit_fraction = 0, occluded_fraction = 0;
@@ -96,7 +96,8 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
             for (int tx = 0; tx < size; tx += 16)
                 for (int y = ty; y < std::min(ty + 16, size); y += side)
                     for (int x = tx; x < std::min(tx + 16, size); x += side)
-                        for (int k = 0; k < side * side; ++k) out.push_back(camera(x + k % side, y + k / side));
+                        for (int k = 0; k < side * side; ++k)
+                            out.push_back(camera(x + k % side, y + k / side));
         return out;
     };
     RayStats stats;
@@ -149,8 +150,10 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
     };
     for (int k = 0; k < kPasses; ++k) {
         timed(rate[0], rays.size(), single, hits);
-        timed(rate[1], packed4.size(), [&] { return packets(packed4, 4); }, hits);
-        timed(rate[2], packed16.size(), [&] { return packets(packed16, 16); }, hits);
+        timed(
+            rate[1], packed4.size(), [&] { return packets(packed4, 4); }, hits);
+        timed(
+            rate[2], packed16.size(), [&] { return packets(packed16, 16); }, hits);
         timed(rate[3], shadow.size(), shadows, occluded);
     }
     auto median = [](std::vector<double> v) {
@@ -165,9 +168,11 @@ Throughput measure(const Geometry& g, Vec3 eye, Vec3 target, double fov_deg, Vec
     const double n_rays = static_cast<double>(rays.size());
     out.boxes_primary = static_cast<double>(primary_stats.box_tests) / n_rays;
     out.prims_primary = static_cast<double>(primary_stats.triangle_tests + primary_stats.sphere_tests +
-                                            primary_stats.shape_box_tests) / n_rays;
+                                            primary_stats.shape_box_tests) /
+                        n_rays;
     out.hit_fraction = static_cast<double>(hits) / static_cast<double>(rays.size());
-    out.occluded_fraction = shadow.empty() ? 0 : static_cast<double>(occluded) / static_cast<double>(shadow.size());
+    out.occluded_fraction =
+        shadow.empty() ? 0 : static_cast<double>(occluded) / static_cast<double>(shadow.size());
     return out;
 }
 
@@ -250,9 +255,12 @@ int main(int argc, char** argv) {
     Throughput t = measure(*g, {0.3, 0.4, -3}, {0, 0, 0}, 45, {5, 5, -5}, 1024);
     std::printf("mesh primary rays: %.2f M/CPU-s (%.1f %% hit; %.1f node tests, %.1f triangle tests a ray)\n",
                 t.primary * 1e-6, 100 * t.hit_fraction, t.boxes_primary, t.prims_primary);
-    std::printf("mesh primary rays in packets: 2x2 pixels %.2f M/CPU-s, 4x4 pixels (the renderer's 1-spp path) %.2f M/CPU-s\n",
-                t.packets4 * 1e-6, t.packets16 * 1e-6);
-    std::printf("mesh shadow rays:  %.2f M/CPU-s (%.1f %% occluded)\n", t.shadow * 1e-6, 100 * t.occluded_fraction);
+    std::printf(
+        "mesh primary rays in packets: 2x2 pixels %.2f M/CPU-s, 4x4 pixels (the renderer's 1-spp path) %.2f "
+        "M/CPU-s\n",
+        t.packets4 * 1e-6, t.packets16 * 1e-6);
+    std::printf("mesh shadow rays:  %.2f M/CPU-s (%.1f %% occluded)\n", t.shadow * 1e-6,
+                100 * t.occluded_fraction);
 
     std::vector<SpecError> errors;
     auto cornell = Geometry::build(cornell_geometry(), errors, true, 1);
@@ -263,9 +271,11 @@ int main(int argc, char** argv) {
     }
     for (auto* cg : {cornell.get(), cornell_bf.get()}) {
         Throughput c = measure(*cg, {0, 0, -550}, {0, 0, 500}, 60, {25, 500, 625}, 512);
-        std::printf("cornell %s: primary %.2f M/CPU-s (packets of 4: %.2f, of 16: %.2f), shadow %.2f M/CPU-s (%.1f %% occluded)\n",
-                    cg == cornell.get() ? "BVH  " : "brute", c.primary * 1e-6, c.packets4 * 1e-6, c.packets16 * 1e-6,
-                    c.shadow * 1e-6, 100 * c.occluded_fraction);
+        std::printf(
+            "cornell %s: primary %.2f M/CPU-s (packets of 4: %.2f, of 16: %.2f), shadow %.2f M/CPU-s (%.1f "
+            "%% occluded)\n",
+            cg == cornell.get() ? "BVH  " : "brute", c.primary * 1e-6, c.packets4 * 1e-6, c.packets16 * 1e-6,
+            c.shadow * 1e-6, 100 * c.occluded_fraction);
     }
     return 0;
 }

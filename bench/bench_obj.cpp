@@ -33,8 +33,8 @@ std::string write_grid(const std::string& path, bool with_vt_vn) {
         for (int c = 0; c < kColumns; ++c) {
             const int a = index(r, c), b = index(r, c + 1), d = index(r + 1, c), e = index(r + 1, c + 1);
             if (with_vt_vn)
-                std::fprintf(f, "f %d/%d/%d %d/%d/%d %d/%d/%d\nf %d/%d/%d %d/%d/%d %d/%d/%d\n", a, a, a, b, b, b, e,
-                             e, e, a, a, a, e, e, e, d, d, d);
+                std::fprintf(f, "f %d/%d/%d %d/%d/%d %d/%d/%d\nf %d/%d/%d %d/%d/%d %d/%d/%d\n", a, a, a, b, b,
+                             b, e, e, e, a, a, a, e, e, e, d, d, d);
             else
                 std::fprintf(f, "f %d %d %d\nf %d %d %d\n", a, b, e, a, e, d);
         }
@@ -67,9 +67,10 @@ int run(const char* label, const std::string& path) {
     std::sort(cpu_seconds.begin(), cpu_seconds.end());
     const double mb = static_cast<double>(std::filesystem::file_size(path)) / 1e6;
     // CPU time alongside wall time: on a shared machine the wall time includes waiting.
-    std::printf("%-10s %8zu triangles %8zu vertices %6.1f MB  load median %.3f s wall (min %.3f, max %.3f), "
-                "%.3f s CPU\n",
-                label, triangles, vertices, mb, seconds[1], seconds[0], seconds[2], cpu_seconds[1]);
+    std::printf(
+        "%-10s %8zu triangles %8zu vertices %6.1f MB  load median %.3f s wall (min %.3f, max %.3f), "
+        "%.3f s CPU\n",
+        label, triangles, vertices, mb, seconds[1], seconds[0], seconds[2], cpu_seconds[1]);
     return 0;
 }
 

@@ -93,11 +93,14 @@ std::string sphere_loop_scene(size_t spheres) {
     return "settings { width 64  height 64 }\n"
            "camera { position <0, 0, -500>  look_at <0, 0, 0> }\n"
            "light point { position <0, 500, -500> }\n"
-           "let n = " + std::to_string(spheres) + "\n"
+           "let n = " +
+           std::to_string(spheres) +
+           "\n"
            "let red = material { color <0.9, 0.2, 0.1>  specular 0.5 }\n"
            "for i in 0 .. n {\n"
            "    let a = i * 0.01\n"
-           "    sphere { center <cos(a) * (100 + i % 97), sin(a) * 50, i % 13 * 10>  radius 0.5 + i % 7 * 0.1\n"
+           "    sphere { center <cos(a) * (100 + i % 97), sin(a) * 50, i % 13 * 10>  radius 0.5 + i % 7 * "
+           "0.1\n"
            "             material red }\n"
            "}\n";
 }

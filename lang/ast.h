@@ -44,19 +44,32 @@ enum class BinaryOp { Or, And, Eq, Ne, Lt, Le, Gt, Ge, Add, Sub, Mul, Div, Mod }
 // The operator as written in source ("||", "<=", "%", ...).
 inline const char* binary_op_text(BinaryOp op) {
     switch (op) {
-    case BinaryOp::Or: return "||";
-    case BinaryOp::And: return "&&";
-    case BinaryOp::Eq: return "==";
-    case BinaryOp::Ne: return "!=";
-    case BinaryOp::Lt: return "<";
-    case BinaryOp::Le: return "<=";
-    case BinaryOp::Gt: return ">";
-    case BinaryOp::Ge: return ">=";
-    case BinaryOp::Add: return "+";
-    case BinaryOp::Sub: return "-";
-    case BinaryOp::Mul: return "*";
-    case BinaryOp::Div: return "/";
-    case BinaryOp::Mod: return "%";
+        case BinaryOp::Or:
+            return "||";
+        case BinaryOp::And:
+            return "&&";
+        case BinaryOp::Eq:
+            return "==";
+        case BinaryOp::Ne:
+            return "!=";
+        case BinaryOp::Lt:
+            return "<";
+        case BinaryOp::Le:
+            return "<=";
+        case BinaryOp::Gt:
+            return ">";
+        case BinaryOp::Ge:
+            return ">=";
+        case BinaryOp::Add:
+            return "+";
+        case BinaryOp::Sub:
+            return "-";
+        case BinaryOp::Mul:
+            return "*";
+        case BinaryOp::Div:
+            return "/";
+        case BinaryOp::Mod:
+            return "%";
     }
     return "?";
 }
@@ -105,7 +118,7 @@ enum class BlockKind { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Me
 struct IfBranch {
     ExprPtr condition;  // null for the final `else`
     std::vector<StmtPtr> body;
-    Span keyword;       // `if` or `else`
+    Span keyword;  // `if` or `else`
 };
 
 struct Stmt {
@@ -121,7 +134,7 @@ struct Stmt {
     std::vector<IfBranch> branches;  // If
     std::vector<StmtPtr> body;       // For
     BlockKind block_kind = BlockKind::Settings;
-    Span keyword;                    // the statement's first token
+    Span keyword;  // the statement's first token
     Block block;
 };
 

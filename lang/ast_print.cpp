@@ -37,14 +37,22 @@ namespace {
 
 const char* block_name(BlockKind kind) {
     switch (kind) {
-    case BlockKind::Settings: return "settings";
-    case BlockKind::Camera: return "camera";
-    case BlockKind::Light: return "light";
-    case BlockKind::Sphere: return "sphere";
-    case BlockKind::Box: return "box";
-    case BlockKind::Triangle: return "triangle";
-    case BlockKind::Plane: return "plane";
-    case BlockKind::Mesh: return "mesh";
+        case BlockKind::Settings:
+            return "settings";
+        case BlockKind::Camera:
+            return "camera";
+        case BlockKind::Light:
+            return "light";
+        case BlockKind::Sphere:
+            return "sphere";
+        case BlockKind::Box:
+            return "box";
+        case BlockKind::Triangle:
+            return "triangle";
+        case BlockKind::Plane:
+            return "plane";
+        case BlockKind::Mesh:
+            return "mesh";
     }
     return "?";
 }
@@ -59,18 +67,29 @@ std::string quote_string(const std::string& s) {
     std::string out = "\"";
     for (const char c : s) {
         switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        default: out += c;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            default:
+                out += c;
         }
     }
     return out + "\"";
 }
 
 // "a b", or "a" when b is empty (a name missing after a syntax error, a triangle's vertices).
-std::string join(const std::string& a, const std::string& b) { return b.empty() ? a : a + " " + b; }
+std::string join(const std::string& a, const std::string& b) {
+    return b.empty() ? a : a + " " + b;
+}
 
 class Printer {
 public:
@@ -129,42 +148,42 @@ private:
 
 void Printer::statement(const Stmt& s) {
     switch (s.kind) {
-    case StmtKind::Let:
-        open(join("let", s.name), s.span);
-        if (s.value) expr(*s.value);
-        close();
-        break;
-    case StmtKind::For:
-        open(join(join("for", s.name), s.range_end ? "range" : "list"), s.span);
-        if (s.value) expr(*s.value);
-        if (s.range_end) expr(*s.range_end);
-        for (const StmtPtr& b : s.body) statement(*b);
-        close();
-        break;
-    case StmtKind::If:
-        open("if", s.span);
-        for (const IfBranch& branch : s.branches) {
-            open(branch.condition ? "branch" : "else", branch.keyword);
-            if (branch.condition) expr(*branch.condition);
-            for (const StmtPtr& b : branch.body) statement(*b);
+        case StmtKind::Let:
+            open(join("let", s.name), s.span);
+            if (s.value) expr(*s.value);
             close();
+            break;
+        case StmtKind::For:
+            open(join(join("for", s.name), s.range_end ? "range" : "list"), s.span);
+            if (s.value) expr(*s.value);
+            if (s.range_end) expr(*s.range_end);
+            for (const StmtPtr& b : s.body) statement(*b);
+            close();
+            break;
+        case StmtKind::If:
+            open("if", s.span);
+            for (const IfBranch& branch : s.branches) {
+                open(branch.condition ? "branch" : "else", branch.keyword);
+                if (branch.condition) expr(*branch.condition);
+                for (const StmtPtr& b : branch.body) statement(*b);
+                close();
+            }
+            close();
+            break;
+        case StmtKind::Include:
+            leaf("include " + quote_string(s.name), s.span);
+            break;
+        case StmtKind::Block: {
+            std::string label = block_name(s.block_kind);
+            if (s.block_kind == BlockKind::Light) label = join(label, s.name);
+            open(label, s.span);
+            block(s.block);
+            close();
+            break;
         }
-        close();
-        break;
-    case StmtKind::Include:
-        leaf("include " + quote_string(s.name), s.span);
-        break;
-    case StmtKind::Block: {
-        std::string label = block_name(s.block_kind);
-        if (s.block_kind == BlockKind::Light) label = join(label, s.name);
-        open(label, s.span);
-        block(s.block);
-        close();
-        break;
-    }
-    case StmtKind::Bad:
-        leaf("bad", s.span);
-        break;
+        case StmtKind::Bad:
+            leaf("bad", s.span);
+            break;
     }
 }
 
@@ -178,23 +197,57 @@ void Printer::block(const Block& b) {
 
 void Printer::expr(const Expr& e) {
     switch (e.kind) {
-    case ExprKind::Number: leaf("number " + format_number(e.number), e.span); return;
-    case ExprKind::String: leaf("string " + quote_string(e.text), e.span); return;
-    case ExprKind::Bool: leaf(e.boolean ? "bool true" : "bool false", e.span); return;
-    case ExprKind::Ident: leaf("ident " + e.text, e.span); return;
-    case ExprKind::Bad: leaf("bad", e.span); return;
-    case ExprKind::PackedList: packed(e); return;
-    case ExprKind::Vector: open("vector", e.span); break;
-    case ExprKind::List: open("list", e.span); break;
-    case ExprKind::Unary: open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span); break;
-    case ExprKind::Binary: open(std::string("binary ") + binary_op_text(e.binary_op), e.op_span); break;
-    case ExprKind::Call: open("call " + e.text, e.span); break;
-    case ExprKind::Member: open("member " + e.text, e.op_span); break;
-    case ExprKind::Index: open("index", e.op_span); break;
-    case ExprKind::Material: open("material", e.span); break;
-    case ExprKind::Image: open("image", e.span); break;
-    case ExprKind::Checker: open("checker", e.span); break;
-    case ExprKind::Perlin: open("perlin", e.span); break;
+        case ExprKind::Number:
+            leaf("number " + format_number(e.number), e.span);
+            return;
+        case ExprKind::String:
+            leaf("string " + quote_string(e.text), e.span);
+            return;
+        case ExprKind::Bool:
+            leaf(e.boolean ? "bool true" : "bool false", e.span);
+            return;
+        case ExprKind::Ident:
+            leaf("ident " + e.text, e.span);
+            return;
+        case ExprKind::Bad:
+            leaf("bad", e.span);
+            return;
+        case ExprKind::PackedList:
+            packed(e);
+            return;
+        case ExprKind::Vector:
+            open("vector", e.span);
+            break;
+        case ExprKind::List:
+            open("list", e.span);
+            break;
+        case ExprKind::Unary:
+            open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span);
+            break;
+        case ExprKind::Binary:
+            open(std::string("binary ") + binary_op_text(e.binary_op), e.op_span);
+            break;
+        case ExprKind::Call:
+            open("call " + e.text, e.span);
+            break;
+        case ExprKind::Member:
+            open("member " + e.text, e.op_span);
+            break;
+        case ExprKind::Index:
+            open("index", e.op_span);
+            break;
+        case ExprKind::Material:
+            open("material", e.span);
+            break;
+        case ExprKind::Image:
+            open("image", e.span);
+            break;
+        case ExprKind::Checker:
+            open("checker", e.span);
+            break;
+        case ExprKind::Perlin:
+            open("perlin", e.span);
+            break;
     }
     for (const ExprPtr& a : e.args) expr(*a);
     if (e.block) block(*e.block);

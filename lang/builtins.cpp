@@ -32,11 +32,13 @@ Value make_numeric(const Numeric& n, Span span) {
     return Value::make_vec3(n.v, span);
 }
 
-std::string quoted_name(const CallContext& c) { return "'" + c.call.text + "'"; }
+std::string quoted_name(const CallContext& c) {
+    return "'" + c.call.text + "'";
+}
 
 void type_error(const CallContext& c, size_t i, const char* expected) {
-    c.diags.error(c.call.args[i]->span, quoted_name(c) + " expects " + expected + ", found " +
-                                            type_name(c.args[i].type()));
+    c.diags.error(c.call.args[i]->span,
+                  quoted_name(c) + " expects " + expected + ", found " + type_name(c.args[i].type()));
 }
 
 bool want(const CallContext& c, size_t i, ValueType type) {
@@ -61,9 +63,8 @@ bool want_vector(const CallContext& c, size_t i) {
 // Argument i must have the same type as argument 0 (min, max, clamp, mix, dot).
 bool want_same(const CallContext& c, size_t i) {
     if (c.args[i].type() == c.args[0].type()) return true;
-    c.diags.error(c.call.args[i]->span,
-                  quoted_name(c) + " expects a " + type_name(c.args[0].type()) +
-                      " like its first argument, found " + type_name(c.args[i].type()));
+    c.diags.error(c.call.args[i]->span, quoted_name(c) + " expects a " + type_name(c.args[0].type()) +
+                                            " like its first argument, found " + type_name(c.args[i].type()));
     return false;
 }
 
@@ -99,11 +100,21 @@ std::optional<Value> componentwise(const CallContext& c, F f) {
     return finite(c, n);
 }
 
-std::optional<Value> fn_sin(const CallContext& c) { return unary_number(c, [](double x) { return std::sin(x); }); }
-std::optional<Value> fn_cos(const CallContext& c) { return unary_number(c, [](double x) { return std::cos(x); }); }
-std::optional<Value> fn_tan(const CallContext& c) { return unary_number(c, [](double x) { return std::tan(x); }); }
-std::optional<Value> fn_atan(const CallContext& c) { return unary_number(c, [](double x) { return std::atan(x); }); }
-std::optional<Value> fn_exp(const CallContext& c) { return unary_number(c, [](double x) { return std::exp(x); }); }
+std::optional<Value> fn_sin(const CallContext& c) {
+    return unary_number(c, [](double x) { return std::sin(x); });
+}
+std::optional<Value> fn_cos(const CallContext& c) {
+    return unary_number(c, [](double x) { return std::cos(x); });
+}
+std::optional<Value> fn_tan(const CallContext& c) {
+    return unary_number(c, [](double x) { return std::tan(x); });
+}
+std::optional<Value> fn_atan(const CallContext& c) {
+    return unary_number(c, [](double x) { return std::atan(x); });
+}
+std::optional<Value> fn_exp(const CallContext& c) {
+    return unary_number(c, [](double x) { return std::exp(x); });
+}
 std::optional<Value> fn_radians(const CallContext& c) {
     return unary_number(c, [](double x) { return x * (std::numbers::pi / 180.0); });
 }
@@ -115,11 +126,16 @@ std::optional<Value> inverse_trig(const CallContext& c, double (*f)(double)) {
     if (!want(c, 0, ValueType::Number)) return std::nullopt;
     double x = c.args[0].number();
     if (x < -1.0 || x > 1.0)
-        return domain_error(c, quoted_name(c) + " of " + format_number(x) + " is undefined (outside [-1, 1])");
+        return domain_error(c,
+                            quoted_name(c) + " of " + format_number(x) + " is undefined (outside [-1, 1])");
     return finite_number(c, f(x));
 }
-std::optional<Value> fn_asin(const CallContext& c) { return inverse_trig(c, [](double x) { return std::asin(x); }); }
-std::optional<Value> fn_acos(const CallContext& c) { return inverse_trig(c, [](double x) { return std::acos(x); }); }
+std::optional<Value> fn_asin(const CallContext& c) {
+    return inverse_trig(c, [](double x) { return std::asin(x); });
+}
+std::optional<Value> fn_acos(const CallContext& c) {
+    return inverse_trig(c, [](double x) { return std::acos(x); });
+}
 
 std::optional<Value> fn_atan2(const CallContext& c) {
     if (!want(c, 0, ValueType::Number) || !want(c, 1, ValueType::Number)) return std::nullopt;
@@ -149,11 +165,19 @@ std::optional<Value> fn_pow(const CallContext& c) {
     return finite_number(c, r);
 }
 
-std::optional<Value> fn_abs(const CallContext& c) { return componentwise(c, [](double x) { return std::fabs(x); }); }
-std::optional<Value> fn_floor(const CallContext& c) { return componentwise(c, [](double x) { return std::floor(x); }); }
-std::optional<Value> fn_ceil(const CallContext& c) { return componentwise(c, [](double x) { return std::ceil(x); }); }
+std::optional<Value> fn_abs(const CallContext& c) {
+    return componentwise(c, [](double x) { return std::fabs(x); });
+}
+std::optional<Value> fn_floor(const CallContext& c) {
+    return componentwise(c, [](double x) { return std::floor(x); });
+}
+std::optional<Value> fn_ceil(const CallContext& c) {
+    return componentwise(c, [](double x) { return std::ceil(x); });
+}
 // std::round rounds halves away from zero, as the language requires.
-std::optional<Value> fn_round(const CallContext& c) { return componentwise(c, [](double x) { return std::round(x); }); }
+std::optional<Value> fn_round(const CallContext& c) {
+    return componentwise(c, [](double x) { return std::round(x); });
+}
 
 std::optional<Value> min_max(const CallContext& c, bool is_min) {
     if (!want_numeric(c, 0) || !want_same(c, 1)) return std::nullopt;
@@ -161,16 +185,20 @@ std::optional<Value> min_max(const CallContext& c, bool is_min) {
     a.v = is_min ? glm::min(a.v, b.v) : glm::max(a.v, b.v);
     return finite(c, a);
 }
-std::optional<Value> fn_min(const CallContext& c) { return min_max(c, true); }
-std::optional<Value> fn_max(const CallContext& c) { return min_max(c, false); }
+std::optional<Value> fn_min(const CallContext& c) {
+    return min_max(c, true);
+}
+std::optional<Value> fn_max(const CallContext& c) {
+    return min_max(c, false);
+}
 
 std::optional<Value> fn_clamp(const CallContext& c) {
     if (!want_numeric(c, 0) || !want_same(c, 1) || !want_same(c, 2)) return std::nullopt;
     Numeric x = numeric(c.args[0]), lo = numeric(c.args[1]), hi = numeric(c.args[2]);
     for (int i = 0; i < 3; ++i) {
         if (lo.v[i] > hi.v[i])
-            return domain_error(c, "'clamp' needs lo <= hi, found lo " + describe(c.args[1]) +
-                                       " and hi " + describe(c.args[2]));
+            return domain_error(c, "'clamp' needs lo <= hi, found lo " + describe(c.args[1]) + " and hi " +
+                                       describe(c.args[2]));
     }
     x.v = glm::min(glm::max(x.v, lo.v), hi.v);
     return finite(c, x);
@@ -228,22 +256,44 @@ std::optional<Value> colour(const CallContext& c, double full_scale) {
     }
     return finite(c, Numeric{3, rgb});
 }
-std::optional<Value> fn_rgb(const CallContext& c) { return colour(c, 255.0); }
-std::optional<Value> fn_srgb(const CallContext& c) { return colour(c, 1.0); }
+std::optional<Value> fn_rgb(const CallContext& c) {
+    return colour(c, 255.0);
+}
+std::optional<Value> fn_srgb(const CallContext& c) {
+    return colour(c, 1.0);
+}
 
 }  // namespace
 
 const std::vector<Builtin>& builtin_functions() {
     static const std::vector<Builtin> table = {
-        {"sin", 1, fn_sin},         {"cos", 1, fn_cos},       {"tan", 1, fn_tan},
-        {"asin", 1, fn_asin},       {"acos", 1, fn_acos},     {"atan", 1, fn_atan},
-        {"atan2", 2, fn_atan2},     {"sqrt", 1, fn_sqrt},     {"pow", 2, fn_pow},
-        {"exp", 1, fn_exp},         {"log", 1, fn_log},       {"abs", 1, fn_abs},
-        {"floor", 1, fn_floor},     {"ceil", 1, fn_ceil},     {"round", 1, fn_round},
-        {"min", 2, fn_min},         {"max", 2, fn_max},       {"clamp", 3, fn_clamp},
-        {"mix", 3, fn_mix},         {"radians", 1, fn_radians}, {"degrees", 1, fn_degrees},
-        {"length", 1, fn_length},   {"normalize", 1, fn_normalize}, {"dot", 2, fn_dot},
-        {"cross", 2, fn_cross},     {"len", 1, fn_len},       {"rgb", 3, fn_rgb},
+        {"sin", 1, fn_sin},
+        {"cos", 1, fn_cos},
+        {"tan", 1, fn_tan},
+        {"asin", 1, fn_asin},
+        {"acos", 1, fn_acos},
+        {"atan", 1, fn_atan},
+        {"atan2", 2, fn_atan2},
+        {"sqrt", 1, fn_sqrt},
+        {"pow", 2, fn_pow},
+        {"exp", 1, fn_exp},
+        {"log", 1, fn_log},
+        {"abs", 1, fn_abs},
+        {"floor", 1, fn_floor},
+        {"ceil", 1, fn_ceil},
+        {"round", 1, fn_round},
+        {"min", 2, fn_min},
+        {"max", 2, fn_max},
+        {"clamp", 3, fn_clamp},
+        {"mix", 3, fn_mix},
+        {"radians", 1, fn_radians},
+        {"degrees", 1, fn_degrees},
+        {"length", 1, fn_length},
+        {"normalize", 1, fn_normalize},
+        {"dot", 2, fn_dot},
+        {"cross", 2, fn_cross},
+        {"len", 1, fn_len},
+        {"rgb", 3, fn_rgb},
         {"srgb", 3, fn_srgb},
     };
     return table;

@@ -32,7 +32,9 @@ Diagnostic& Diagnostics::warning(Span span, std::string message) {
     return d;
 }
 
-void Diagnostics::push_include(Span include_site) { include_stack_.push_back(include_site); }
+void Diagnostics::push_include(Span include_site) {
+    include_stack_.push_back(include_site);
+}
 
 void Diagnostics::pop_include() {
     if (!include_stack_.empty()) include_stack_.pop_back();
@@ -51,9 +53,12 @@ constexpr uint32_t max_shown_columns = 160;
 
 const char* severity_name(Severity s) {
     switch (s) {
-    case Severity::Error: return "error";
-    case Severity::Warning: return "warning";
-    case Severity::Note: return "note";
+        case Severity::Error:
+            return "error";
+        case Severity::Warning:
+            return "warning";
+        case Severity::Note:
+            return "note";
     }
     return "error";
 }
@@ -147,8 +152,8 @@ void append_located(std::string& out, const SourceManager& sources, Span span, S
         out += ": " + message + "\n";
         return;
     }
-    out += loc.file->path + ":" + std::to_string(loc.begin.line) + ":" +
-           std::to_string(loc.begin.column) + ": " + severity_name(severity) + ": " + message + "\n";
+    out += loc.file->path + ":" + std::to_string(loc.begin.line) + ":" + std::to_string(loc.begin.column) +
+           ": " + severity_name(severity) + ": " + message + "\n";
     const Snippet snip =
         make_snippet(sources.line_text(span.file, loc.begin.line), loc.begin.column, loc.caret_len);
     const std::string number = std::to_string(loc.begin.line);
@@ -167,7 +172,8 @@ std::string format_diagnostics(const Diagnostics& diags, const SourceManager& so
         // One gutter width per diagnostic so its snippets line up.
         size_t width = 5;
         const auto widen = [&](Span s) {
-            if (s.file < sources.size()) width = std::max(width, digits(sources.line_col(s.file, s.begin).line));
+            if (s.file < sources.size())
+                width = std::max(width, digits(sources.line_col(s.file, s.begin).line));
         };
         widen(d.span);
         for (const Note& n : notes) widen(n.span);

@@ -20,8 +20,8 @@ struct Note {
 struct Diagnostic {
     Severity severity = Severity::Error;
     Span span;
-    std::string message;          // lower-case, no trailing period
-    std::vector<Note> notes;      // printed after, each with its own source line
+    std::string message;            // lower-case, no trailing period
+    std::vector<Note> notes;        // printed after, each with its own source line
     std::vector<std::string> help;  // "= help: ..." lines
     // The `include` sites that led to the file of `span`, innermost first (filled by the sink
     // from push_include); printed after the notes as "in file included from here" notes.
@@ -43,6 +43,7 @@ public:
     // Include chain: notes appended to every diagnostic reported while a file is being included.
     void push_include(Span include_site);
     void pop_include();
+
 private:
     std::vector<Diagnostic> diags_;
     std::vector<Span> include_stack_;

@@ -19,7 +19,9 @@ std::string quoted(std::string_view s) {
     return out;
 }
 
-bool finite3(glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(glm::dvec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Vectors computed as three components; a vector2 keeps z = 0 and drops it again.
 glm::dvec3 components(const Value& v) {
@@ -36,39 +38,51 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
     DepthGuard guard(*this, expr.span);
     if (!guard.ok() || stopped()) return std::nullopt;
     switch (expr.kind) {
-    case ExprKind::Number: return Value::make_number(expr.number, expr.span);
-    case ExprKind::String: return Value::make_string(expr.text, expr.span);
-    case ExprKind::Bool: return Value::make_bool(expr.boolean, expr.span);
-    case ExprKind::Ident: return eval_ident(expr);
-    case ExprKind::Vector: return eval_vector(expr);
-    case ExprKind::List: return eval_list(expr);
-    case ExprKind::PackedList: {
-        if (!expr.packed) return std::nullopt;
-        auto list = std::make_shared<ListValue>();
-        list->packed = expr.packed;  // shared with the AST: a million vertices are not copied
-        return Value::make_list(std::move(list), expr.span);
-    }
-    case ExprKind::Unary: return eval_unary(expr);
-    case ExprKind::Binary: return eval_binary(expr);
-    case ExprKind::Call: return eval_call(expr);
-    case ExprKind::Member: return eval_member(expr);
-    case ExprKind::Index: return eval_index(expr);
-    case ExprKind::Material: {
-        BlockContext ctx = context();
-        MaterialPtr m = lower_material(expr, ctx);
-        if (!m) return std::nullopt;
-        Span span = m->span;
-        return Value::make_material(std::move(m), span);
-    }
-    case ExprKind::Image:
-    case ExprKind::Checker:
-    case ExprKind::Perlin: {
-        BlockContext ctx = context();
-        TexturePtr t = lower_texture(expr, ctx);
-        if (!t) return std::nullopt;
-        return Value::make_texture(std::move(t), expr.span);
-    }
-    case ExprKind::Bad: return std::nullopt;  // the parser reported it
+        case ExprKind::Number:
+            return Value::make_number(expr.number, expr.span);
+        case ExprKind::String:
+            return Value::make_string(expr.text, expr.span);
+        case ExprKind::Bool:
+            return Value::make_bool(expr.boolean, expr.span);
+        case ExprKind::Ident:
+            return eval_ident(expr);
+        case ExprKind::Vector:
+            return eval_vector(expr);
+        case ExprKind::List:
+            return eval_list(expr);
+        case ExprKind::PackedList: {
+            if (!expr.packed) return std::nullopt;
+            auto list = std::make_shared<ListValue>();
+            list->packed = expr.packed;  // shared with the AST: a million vertices are not copied
+            return Value::make_list(std::move(list), expr.span);
+        }
+        case ExprKind::Unary:
+            return eval_unary(expr);
+        case ExprKind::Binary:
+            return eval_binary(expr);
+        case ExprKind::Call:
+            return eval_call(expr);
+        case ExprKind::Member:
+            return eval_member(expr);
+        case ExprKind::Index:
+            return eval_index(expr);
+        case ExprKind::Material: {
+            BlockContext ctx = context();
+            MaterialPtr m = lower_material(expr, ctx);
+            if (!m) return std::nullopt;
+            Span span = m->span;
+            return Value::make_material(std::move(m), span);
+        }
+        case ExprKind::Image:
+        case ExprKind::Checker:
+        case ExprKind::Perlin: {
+            BlockContext ctx = context();
+            TexturePtr t = lower_texture(expr, ctx);
+            if (!t) return std::nullopt;
+            return Value::make_texture(std::move(t), expr.span);
+        }
+        case ExprKind::Bad:
+            return std::nullopt;  // the parser reported it
     }
     return std::nullopt;
 }
@@ -103,7 +117,8 @@ std::optional<Value> Interpreter::eval_vector(const Expr& expr) {
             continue;
         }
         if (!c->is(ValueType::Number)) {
-            diags_.error(expr.args[i]->span, std::string("vector components must be numbers, found ") + type_name(c->type()));
+            diags_.error(expr.args[i]->span,
+                         std::string("vector components must be numbers, found ") + type_name(c->type()));
             ok = false;
             continue;
         }
@@ -144,7 +159,8 @@ std::optional<Value> Interpreter::eval_unary(const Expr& expr) {
     }
     if (v->is(ValueType::Number)) return Value::make_number(-v->number(), expr.span);
     if (v->is_vector()) return make_vector(v->type(), -components(*v), expr.span);
-    diags_.error(expr.op_span, std::string("operator '-' needs a number or a vector, found ") + type_name(v->type()));
+    diags_.error(expr.op_span,
+                 std::string("operator '-' needs a number or a vector, found ") + type_name(v->type()));
     return std::nullopt;
 }
 
@@ -154,16 +170,16 @@ std::optional<Value> Interpreter::eval_logical(const Expr& expr) {
     std::optional<Value> a = eval(*expr.args[0]);
     if (!a) return std::nullopt;
     if (!a->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " + type_name(a->type()) +
-                                       " on the left");
+        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
+                                       type_name(a->type()) + " on the left");
         return std::nullopt;
     }
     if (a->boolean() == is_or) return Value::make_bool(is_or, expr.span);
     std::optional<Value> b = eval(*expr.args[1]);
     if (!b) return std::nullopt;
     if (!b->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " + type_name(b->type()) +
-                                       " on the right");
+        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
+                                       type_name(b->type()) + " on the right");
         return std::nullopt;
     }
     return Value::make_bool(b->boolean(), expr.span);
@@ -176,13 +192,15 @@ std::optional<Value> Interpreter::eval_binary(const Expr& expr) {
     std::optional<Value> b = eval(*expr.args[1]);
     if (!a || !b) return std::nullopt;
     switch (expr.binary_op) {
-    case BinaryOp::Eq:
-    case BinaryOp::Ne:
-    case BinaryOp::Lt:
-    case BinaryOp::Le:
-    case BinaryOp::Gt:
-    case BinaryOp::Ge: return compare(expr, *a, *b);
-    default: return arithmetic(expr, *a, *b);
+        case BinaryOp::Eq:
+        case BinaryOp::Ne:
+        case BinaryOp::Lt:
+        case BinaryOp::Le:
+        case BinaryOp::Gt:
+        case BinaryOp::Ge:
+            return compare(expr, *a, *b);
+        default:
+            return arithmetic(expr, *a, *b);
     }
 }
 
@@ -196,14 +214,16 @@ std::optional<Value> Interpreter::compare(const Expr& expr, const Value& a, cons
             return std::nullopt;
         }
         if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture)) {
-            diags_.error(expr.op_span, std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
+            diags_.error(expr.op_span,
+                         std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
             return std::nullopt;
         }
         bool equal = values_equal(a, b);
         return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, expr.span);
     }
     if (!a.is(ValueType::Number) || !b.is(ValueType::Number)) {
-        diags_.error(expr.op_span, sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
+        diags_.error(expr.op_span,
+                     sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
         return std::nullopt;
     }
     const double x = a.number(), y = b.number();
@@ -219,7 +239,8 @@ std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, c
         return std::nullopt;
     };
     auto mismatch = [&]() {
-        return fail("operator " + sym + " cannot combine " + type_name(a.type()) + " and " + type_name(b.type()));
+        return fail("operator " + sym + " cannot combine " + type_name(a.type()) + " and " +
+                    type_name(b.type()));
     };
     auto result = [&](ValueType type, glm::dvec3 v) -> std::optional<Value> {
         if (!finite3(v)) return fail("result of " + sym + " is not a finite number");
@@ -235,34 +256,42 @@ std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, c
     if (a.is(ValueType::Number) && b.is(ValueType::Number)) {
         const double x = a.number(), y = b.number();
         switch (op) {
-        case BinaryOp::Add: return result(ValueType::Number, {x + y, 0, 0});
-        case BinaryOp::Sub: return result(ValueType::Number, {x - y, 0, 0});
-        case BinaryOp::Mul: return result(ValueType::Number, {x * y, 0, 0});
-        case BinaryOp::Div:
-            if (y == 0) return fail("division by zero");
-            return result(ValueType::Number, {x / y, 0, 0});
-        case BinaryOp::Mod:
-            if (y == 0) return fail("modulo by zero");
-            return result(ValueType::Number, {std::fmod(x, y), 0, 0});
-        default: return mismatch();
+            case BinaryOp::Add:
+                return result(ValueType::Number, {x + y, 0, 0});
+            case BinaryOp::Sub:
+                return result(ValueType::Number, {x - y, 0, 0});
+            case BinaryOp::Mul:
+                return result(ValueType::Number, {x * y, 0, 0});
+            case BinaryOp::Div:
+                if (y == 0) return fail("division by zero");
+                return result(ValueType::Number, {x / y, 0, 0});
+            case BinaryOp::Mod:
+                if (y == 0) return fail("modulo by zero");
+                return result(ValueType::Number, {std::fmod(x, y), 0, 0});
+            default:
+                return mismatch();
         }
     }
     if (a.is_vector() && a.type() == b.type()) {
         const glm::dvec3 x = components(a), y = components(b);
         const int dims = a.is(ValueType::Vector2) ? 2 : 3;
         switch (op) {
-        case BinaryOp::Add: return result(a.type(), x + y);
-        case BinaryOp::Sub: return result(a.type(), x - y);
-        case BinaryOp::Mul: return result(a.type(), x * y);
-        case BinaryOp::Div: {
-            glm::dvec3 q(0.0);
-            for (int i = 0; i < dims; ++i) {
-                if (y[i] == 0) return fail("division by zero (a component of the divisor is 0)");
-                q[i] = x[i] / y[i];
+            case BinaryOp::Add:
+                return result(a.type(), x + y);
+            case BinaryOp::Sub:
+                return result(a.type(), x - y);
+            case BinaryOp::Mul:
+                return result(a.type(), x * y);
+            case BinaryOp::Div: {
+                glm::dvec3 q(0.0);
+                for (int i = 0; i < dims; ++i) {
+                    if (y[i] == 0) return fail("division by zero (a component of the divisor is 0)");
+                    q[i] = x[i] / y[i];
+                }
+                return result(a.type(), q);
             }
-            return result(a.type(), q);
-        }
-        default: return mismatch();
+            default:
+                return mismatch();
         }
     }
     if (a.is_vector() && b.is(ValueType::Number) && (op == BinaryOp::Mul || op == BinaryOp::Div)) {
@@ -279,7 +308,8 @@ std::optional<Value> Interpreter::eval_call(const Expr& expr) {
     const std::string& name = expr.text;
     if (const Binding* b = find(name)) {
         if (!b->value) return std::nullopt;
-        Diagnostic& d = diags_.error(expr.op_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
+        Diagnostic& d = diags_.error(
+            expr.op_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
         d.notes.push_back({b->span, quoted(name) + " is defined here"});
         return std::nullopt;
     }
@@ -287,7 +317,8 @@ std::optional<Value> Interpreter::eval_call(const Expr& expr) {
     if (!f) {
         for (const BuiltinConstant& c : builtin_constants()) {
             if (c.name == name) {
-                diags_.error(expr.op_span, quoted(name) + " is a " + type_name(c.value.type()) + ", not a function");
+                diags_.error(expr.op_span,
+                             quoted(name) + " is a " + type_name(c.value.type()) + ", not a function");
                 return std::nullopt;
             }
         }
@@ -325,9 +356,13 @@ std::optional<Value> Interpreter::eval_member(const Expr& expr) {
     if (!v) return std::nullopt;
     const std::string& field = expr.text;
     if (v->is(ValueType::Vector3)) {
-        int i = field == "x" || field == "r" ? 0 : field == "y" || field == "g" ? 1 : field == "z" || field == "b" ? 2 : -1;
+        int i = field == "x" || field == "r"   ? 0
+                : field == "y" || field == "g" ? 1
+                : field == "z" || field == "b" ? 2
+                                               : -1;
         if (i >= 0) return Value::make_number(v->vec3()[i], expr.span);
-        diags_.error(expr.op_span, "vector3 has no component " + quoted(field) + " (it has x, y, z and r, g, b)");
+        diags_.error(expr.op_span,
+                     "vector3 has no component " + quoted(field) + " (it has x, y, z and r, g, b)");
         return std::nullopt;
     }
     if (v->is(ValueType::Vector2)) {
@@ -346,7 +381,8 @@ std::optional<Value> Interpreter::eval_index(const Expr& expr) {
     std::optional<Value> index = eval(*expr.args[1]);
     if (!base || !index) return std::nullopt;
     if (!base->is(ValueType::List)) {
-        diags_.error(expr.op_span, std::string("cannot index a ") + type_name(base->type()) + ": only lists can be indexed");
+        diags_.error(expr.op_span, std::string("cannot index a ") + type_name(base->type()) +
+                                       ": only lists can be indexed");
         return std::nullopt;
     }
     const Span at = expr.args[1]->span;
@@ -361,8 +397,8 @@ std::optional<Value> Interpreter::eval_index(const Expr& expr) {
     }
     const size_t size = base->list().size();
     if (i < 0 || i >= static_cast<double>(size)) {
-        diags_.error(at, "index " + format_number(i) + " is out of range for a list of " + std::to_string(size) +
-                             (size == 1 ? " element" : " elements"));
+        diags_.error(at, "index " + format_number(i) + " is out of range for a list of " +
+                             std::to_string(size) + (size == 1 ? " element" : " elements"));
         return std::nullopt;
     }
     return base->list().at(static_cast<size_t>(i), sources_);

@@ -29,7 +29,8 @@ bool read_file(const std::string& path, std::string& out, std::string& reason) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         reason = errno ? std::strerror(errno) : "cannot open it";
-        if (!reason.empty()) reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
+        if (!reason.empty())
+            reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
         return false;
     }
     in.seekg(0, std::ios::end);
@@ -139,8 +140,8 @@ std::optional<MaterialPtr> Interpreter::default_material(Span keyword) {
     if (!b) return MaterialPtr{};
     if (!b->value) return std::nullopt;
     if (!b->value->is(ValueType::Material)) {
-        Diagnostic& d = diags_.error(keyword, std::string("'default_material' is a ") + type_name(b->value->type()) +
-                                                  ", not a material");
+        Diagnostic& d = diags_.error(keyword, std::string("'default_material' is a ") +
+                                                  type_name(b->value->type()) + ", not a material");
         d.notes.push_back({b->span, "'default_material' is defined here"});
         return std::nullopt;
     }
@@ -148,8 +149,12 @@ std::optional<MaterialPtr> Interpreter::default_material(Span keyword) {
 }
 
 BlockContext Interpreter::context() {
-    return BlockContext{sources_, diags_, [this](const Expr& e) { return eval(e); }, chain_,
-                        [this](Span keyword) { return default_material(keyword); }, &obj_cache_};
+    return BlockContext{sources_,
+                        diags_,
+                        [this](const Expr& e) { return eval(e); },
+                        chain_,
+                        [this](Span keyword) { return default_material(keyword); },
+                        &obj_cache_};
 }
 
 // ---- statements --------------------------------------------------------------------------------
@@ -164,7 +169,9 @@ void Interpreter::run(const Program& program) {
     include_stack_files_.pop_back();
 }
 
-std::optional<Value> Interpreter::evaluate(const Expr& expr) { return eval(expr); }
+std::optional<Value> Interpreter::evaluate(const Expr& expr) {
+    return eval(expr);
+}
 
 void Interpreter::exec_all(const std::vector<StmtPtr>& body) {
     for (const StmtPtr& s : body) {
@@ -177,12 +184,23 @@ void Interpreter::exec(const Stmt& stmt) {
     DepthGuard guard(*this, stmt.keyword);
     if (!guard.ok()) return;
     switch (stmt.kind) {
-    case StmtKind::Let: exec_let(stmt); break;
-    case StmtKind::For: exec_for(stmt); break;
-    case StmtKind::If: exec_if(stmt); break;
-    case StmtKind::Include: exec_include(stmt); break;
-    case StmtKind::Block: exec_block(stmt); break;
-    case StmtKind::Bad: break;  // the parser reported it
+        case StmtKind::Let:
+            exec_let(stmt);
+            break;
+        case StmtKind::For:
+            exec_for(stmt);
+            break;
+        case StmtKind::If:
+            exec_if(stmt);
+            break;
+        case StmtKind::Include:
+            exec_include(stmt);
+            break;
+        case StmtKind::Block:
+            exec_block(stmt);
+            break;
+        case StmtKind::Bad:
+            break;  // the parser reported it
     }
 }
 
@@ -226,10 +244,12 @@ void Interpreter::exec_for(const Stmt& stmt) {
         for (const auto* bound : {&*a, &*b}) {
             const Expr& e = bound == &*a ? *stmt.value : *stmt.range_end;
             if (!bound->is(ValueType::Number)) {
-                diags_.error(e.span, std::string("'for' range bounds must be numbers, found ") + type_name(bound->type()));
+                diags_.error(e.span, std::string("'for' range bounds must be numbers, found ") +
+                                         type_name(bound->type()));
                 ok = false;
             } else if (bound->number() != std::floor(bound->number())) {
-                diags_.error(e.span, "'for' range bounds must be integers, found " + format_number(bound->number()));
+                diags_.error(e.span,
+                             "'for' range bounds must be integers, found " + format_number(bound->number()));
                 ok = false;
             }
         }
@@ -247,8 +267,8 @@ void Interpreter::exec_for(const Stmt& stmt) {
     std::optional<Value> list = eval(*stmt.value);
     if (!list) return;
     if (!list->is(ValueType::List)) {
-        diags_.error(stmt.value->span, std::string("'for' needs a list or a range 'A .. B', found ") +
-                                           type_name(list->type()));
+        diags_.error(stmt.value->span,
+                     std::string("'for' needs a list or a range 'A .. B', found ") + type_name(list->type()));
         return;
     }
     const ListPtr items = list->list_ptr();  // keeps the list alive while the body runs
@@ -290,7 +310,8 @@ void Interpreter::exec_include(const Stmt& stmt) {
         // File names only: the locations (this error and its include notes) give the full paths.
         auto name = [](const std::string& p) { return std::filesystem::path(p).filename().string(); };
         std::string cycle;
-        for (size_t i = static_cast<size_t>(on_stack - include_stack_.begin()); i < include_stack_.size(); ++i)
+        for (size_t i = static_cast<size_t>(on_stack - include_stack_.begin()); i < include_stack_.size();
+             ++i)
             cycle += name(sources_.file(include_stack_files_[i]).path) + " → ";
         diags_.error(at, "include cycle: " + cycle + name(path));
         abort();
@@ -328,31 +349,34 @@ void Interpreter::exec_include(const Stmt& stmt) {
 void Interpreter::exec_block(const Stmt& stmt) {
     BlockContext ctx = context();
     switch (stmt.block_kind) {
-    case BlockKind::Settings:
-    case BlockKind::Camera: {
-        const bool camera = stmt.block_kind == BlockKind::Camera;
-        std::optional<Span>& first = camera ? first_camera_ : first_settings_;
-        // A second one is an error, but its properties are still checked (and then dropped).
-        const bool second = first.has_value();
-        if (second) {
-            Diagnostic& d = diags_.error(stmt.keyword, camera ? "more than one camera" : "more than one 'settings' block");
-            d.notes.push_back({*first, camera ? "the first camera is here" : "the first 'settings' block is here"});
-        } else {
-            first = stmt.keyword;
+        case BlockKind::Settings:
+        case BlockKind::Camera: {
+            const bool camera = stmt.block_kind == BlockKind::Camera;
+            std::optional<Span>& first = camera ? first_camera_ : first_settings_;
+            // A second one is an error, but its properties are still checked (and then dropped).
+            const bool second = first.has_value();
+            if (second) {
+                Diagnostic& d = diags_.error(
+                    stmt.keyword, camera ? "more than one camera" : "more than one 'settings' block");
+                d.notes.push_back(
+                    {*first, camera ? "the first camera is here" : "the first 'settings' block is here"});
+            } else {
+                first = stmt.keyword;
+            }
+            if (camera) {
+                auto c = lower_camera(stmt, ctx);
+                if (c && !second) scene_.set_camera(*c, stmt.keyword, chain_);
+            } else {
+                auto s = lower_settings(stmt, ctx);
+                if (s && !second) scene_.set_settings(*s, stmt.keyword, chain_);
+            }
+            return;
         }
-        if (camera) {
-            auto c = lower_camera(stmt, ctx);
-            if (c && !second) scene_.set_camera(*c, stmt.keyword, chain_);
-        } else {
-            auto s = lower_settings(stmt, ctx);
-            if (s && !second) scene_.set_settings(*s, stmt.keyword, chain_);
-        }
-        return;
-    }
-    case BlockKind::Light:
-        if (auto l = lower_light(stmt, ctx)) scene_.add_light(*l, stmt.keyword, chain_);
-        return;
-    default: break;
+        case BlockKind::Light:
+            if (auto l = lower_light(stmt, ctx)) scene_.add_light(*l, stmt.keyword, chain_);
+            return;
+        default:
+            break;
     }
     std::optional<LoweredObject> object = lower_object(stmt, ctx);
     if (!object) return;

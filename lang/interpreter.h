@@ -122,9 +122,9 @@ private:
     // includes
     IncludeChain chain_;
     int include_depth_ = 0;
-    std::vector<std::string> include_stack_;      // canonical paths of the files being run
-    std::vector<uint32_t> include_stack_files_;   // their file ids (for the cycle message)
-    std::set<std::string> included_;              // canonical paths already run
+    std::vector<std::string> include_stack_;          // canonical paths of the files being run
+    std::vector<uint32_t> include_stack_files_;       // their file ids (for the cycle message)
+    std::set<std::string> included_;                  // canonical paths already run
     std::vector<std::unique_ptr<Program>> programs_;  // included ASTs: bindings point into them
     ObjCache obj_cache_;
 };

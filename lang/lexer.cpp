@@ -17,23 +17,37 @@ struct Keyword {
 };
 
 constexpr Keyword keywords[] = {
-    {"let", TokenKind::Let},           {"for", TokenKind::For},
-    {"in", TokenKind::In},             {"if", TokenKind::If},
-    {"else", TokenKind::Else},         {"include", TokenKind::Include},
-    {"settings", TokenKind::Settings}, {"camera", TokenKind::Camera},
-    {"light", TokenKind::Light},       {"sphere", TokenKind::Sphere},
-    {"box", TokenKind::Box},           {"triangle", TokenKind::Triangle},
-    {"plane", TokenKind::Plane},       {"mesh", TokenKind::Mesh},
-    {"material", TokenKind::Material}, {"image", TokenKind::Image},
-    {"checker", TokenKind::Checker},   {"perlin", TokenKind::Perlin},
-    {"true", TokenKind::True},         {"false", TokenKind::False},
+    {"let", TokenKind::Let},
+    {"for", TokenKind::For},
+    {"in", TokenKind::In},
+    {"if", TokenKind::If},
+    {"else", TokenKind::Else},
+    {"include", TokenKind::Include},
+    {"settings", TokenKind::Settings},
+    {"camera", TokenKind::Camera},
+    {"light", TokenKind::Light},
+    {"sphere", TokenKind::Sphere},
+    {"box", TokenKind::Box},
+    {"triangle", TokenKind::Triangle},
+    {"plane", TokenKind::Plane},
+    {"mesh", TokenKind::Mesh},
+    {"material", TokenKind::Material},
+    {"image", TokenKind::Image},
+    {"checker", TokenKind::Checker},
+    {"perlin", TokenKind::Perlin},
+    {"true", TokenKind::True},
+    {"false", TokenKind::False},
 };
 
-bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
+bool is_digit(unsigned char c) {
+    return c >= '0' && c <= '9';
+}
 bool is_ident_start(unsigned char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
 }
-bool is_ident_char(unsigned char c) { return is_ident_start(c) || is_digit(c); }
+bool is_ident_char(unsigned char c) {
+    return is_ident_start(c) || is_digit(c);
+}
 
 std::string hex_byte(unsigned char b) {
     char buf[8];
@@ -78,43 +92,76 @@ std::string_view token_spelling(TokenKind kind) {
     for (const Keyword& k : keywords)
         if (k.kind == kind) return k.word;
     switch (kind) {
-    case TokenKind::LBrace: return "{";
-    case TokenKind::RBrace: return "}";
-    case TokenKind::LParen: return "(";
-    case TokenKind::RParen: return ")";
-    case TokenKind::LBracket: return "[";
-    case TokenKind::RBracket: return "]";
-    case TokenKind::Less: return "<";
-    case TokenKind::Greater: return ">";
-    case TokenKind::Comma: return ",";
-    case TokenKind::Assign: return "=";
-    case TokenKind::Dot: return ".";
-    case TokenKind::DotDot: return "..";
-    case TokenKind::Plus: return "+";
-    case TokenKind::Minus: return "-";
-    case TokenKind::Star: return "*";
-    case TokenKind::Slash: return "/";
-    case TokenKind::Percent: return "%";
-    case TokenKind::EqEq: return "==";
-    case TokenKind::NotEq: return "!=";
-    case TokenKind::LessEq: return "<=";
-    case TokenKind::GreaterEq: return ">=";
-    case TokenKind::AndAnd: return "&&";
-    case TokenKind::OrOr: return "||";
-    case TokenKind::Bang: return "!";
-    default: return "";
+        case TokenKind::LBrace:
+            return "{";
+        case TokenKind::RBrace:
+            return "}";
+        case TokenKind::LParen:
+            return "(";
+        case TokenKind::RParen:
+            return ")";
+        case TokenKind::LBracket:
+            return "[";
+        case TokenKind::RBracket:
+            return "]";
+        case TokenKind::Less:
+            return "<";
+        case TokenKind::Greater:
+            return ">";
+        case TokenKind::Comma:
+            return ",";
+        case TokenKind::Assign:
+            return "=";
+        case TokenKind::Dot:
+            return ".";
+        case TokenKind::DotDot:
+            return "..";
+        case TokenKind::Plus:
+            return "+";
+        case TokenKind::Minus:
+            return "-";
+        case TokenKind::Star:
+            return "*";
+        case TokenKind::Slash:
+            return "/";
+        case TokenKind::Percent:
+            return "%";
+        case TokenKind::EqEq:
+            return "==";
+        case TokenKind::NotEq:
+            return "!=";
+        case TokenKind::LessEq:
+            return "<=";
+        case TokenKind::GreaterEq:
+            return ">=";
+        case TokenKind::AndAnd:
+            return "&&";
+        case TokenKind::OrOr:
+            return "||";
+        case TokenKind::Bang:
+            return "!";
+        default:
+            return "";
     }
 }
 
 bool is_statement_keyword(TokenKind kind) {
     switch (kind) {
-    case TokenKind::Let: case TokenKind::For: case TokenKind::If: case TokenKind::Include:
-    case TokenKind::Settings: case TokenKind::Camera: case TokenKind::Light:
-    case TokenKind::Sphere: case TokenKind::Box: case TokenKind::Triangle:
-    case TokenKind::Plane: case TokenKind::Mesh:
-        return true;
-    default:
-        return false;
+        case TokenKind::Let:
+        case TokenKind::For:
+        case TokenKind::If:
+        case TokenKind::Include:
+        case TokenKind::Settings:
+        case TokenKind::Camera:
+        case TokenKind::Light:
+        case TokenKind::Sphere:
+        case TokenKind::Box:
+        case TokenKind::Triangle:
+        case TokenKind::Plane:
+        case TokenKind::Mesh:
+            return true;
+        default:
+            return false;
     }
 }
 
@@ -122,9 +169,9 @@ Lexer::Lexer(uint32_t file, std::string_view text, Diagnostics* diags)
     : file_(file), text_(text), diags_(diags) {
     end_ = static_cast<uint32_t>(std::min<size_t>(text.size(), std::numeric_limits<uint32_t>::max()));
     pos_ = static_cast<uint32_t>(bom_length(text));
-    if (text.size() >= 2 && ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
-        error(0, 0, 2, "file is UTF-16 (it starts with a UTF-16 byte-order mark)",
-              "save the file as UTF-8");
+    if (text.size() >= 2 &&
+        ((text[0] == '\xFF' && text[1] == '\xFE') || (text[0] == '\xFE' && text[1] == '\xFF'))) {
+        error(0, 0, 2, "file is UTF-16 (it starts with a UTF-16 byte-order mark)", "save the file as UTF-8");
         pos_ = end_;
     }
 }
@@ -205,40 +252,63 @@ Token Lexer::next() {
         const uint32_t begin = pos_;
         const unsigned char c = at(pos_);
         const unsigned char c1 = at(pos_ + 1);
-        const auto one = [&](TokenKind k) { pos_ += 1; return make(k, begin); };
-        const auto two = [&](TokenKind k) { pos_ += 2; return make(k, begin); };
+        const auto one = [&](TokenKind k) {
+            pos_ += 1;
+            return make(k, begin);
+        };
+        const auto two = [&](TokenKind k) {
+            pos_ += 2;
+            return make(k, begin);
+        };
         switch (c) {
-        case '{': return one(TokenKind::LBrace);
-        case '}': return one(TokenKind::RBrace);
-        case '(': return one(TokenKind::LParen);
-        case ')': return one(TokenKind::RParen);
-        case '[': return one(TokenKind::LBracket);
-        case ']': return one(TokenKind::RBracket);
-        case ',': return one(TokenKind::Comma);
-        case '+': return one(TokenKind::Plus);
-        case '-': return one(TokenKind::Minus);
-        case '*': return one(TokenKind::Star);
-        case '/': return one(TokenKind::Slash);
-        case '%': return one(TokenKind::Percent);
-        case '<': return c1 == '=' ? two(TokenKind::LessEq) : one(TokenKind::Less);
-        case '>': return c1 == '=' ? two(TokenKind::GreaterEq) : one(TokenKind::Greater);
-        case '=': return c1 == '=' ? two(TokenKind::EqEq) : one(TokenKind::Assign);
-        case '!': return c1 == '=' ? two(TokenKind::NotEq) : one(TokenKind::Bang);
-        case '&':
-            if (c1 == '&') return two(TokenKind::AndAnd);
-            break;
-        case '|':
-            if (c1 == '|') return two(TokenKind::OrOr);
-            break;
-        case '.':
-            if (c1 == '.') return two(TokenKind::DotDot);
-            if (is_digit(c1)) return number(begin);
-            return one(TokenKind::Dot);
-        case '"': return string_literal(begin);
-        default:
-            if (is_digit(c)) return number(begin);
-            if (is_ident_start(c)) return identifier(begin);
-            break;
+            case '{':
+                return one(TokenKind::LBrace);
+            case '}':
+                return one(TokenKind::RBrace);
+            case '(':
+                return one(TokenKind::LParen);
+            case ')':
+                return one(TokenKind::RParen);
+            case '[':
+                return one(TokenKind::LBracket);
+            case ']':
+                return one(TokenKind::RBracket);
+            case ',':
+                return one(TokenKind::Comma);
+            case '+':
+                return one(TokenKind::Plus);
+            case '-':
+                return one(TokenKind::Minus);
+            case '*':
+                return one(TokenKind::Star);
+            case '/':
+                return one(TokenKind::Slash);
+            case '%':
+                return one(TokenKind::Percent);
+            case '<':
+                return c1 == '=' ? two(TokenKind::LessEq) : one(TokenKind::Less);
+            case '>':
+                return c1 == '=' ? two(TokenKind::GreaterEq) : one(TokenKind::Greater);
+            case '=':
+                return c1 == '=' ? two(TokenKind::EqEq) : one(TokenKind::Assign);
+            case '!':
+                return c1 == '=' ? two(TokenKind::NotEq) : one(TokenKind::Bang);
+            case '&':
+                if (c1 == '&') return two(TokenKind::AndAnd);
+                break;
+            case '|':
+                if (c1 == '|') return two(TokenKind::OrOr);
+                break;
+            case '.':
+                if (c1 == '.') return two(TokenKind::DotDot);
+                if (is_digit(c1)) return number(begin);
+                return one(TokenKind::Dot);
+            case '"':
+                return string_literal(begin);
+            default:
+                if (is_digit(c)) return number(begin);
+                if (is_ident_start(c)) return identifier(begin);
+                break;
         }
         bad_bytes(begin);
     }
@@ -467,17 +537,20 @@ std::string decode_string(std::string_view literal) {
 }
 
 std::string describe_token(const Token& token, std::string_view text) {
-    const std::string_view lexeme =
-        token.begin <= token.end && token.end <= text.size() ? text.substr(token.begin, token.end - token.begin)
-                                                             : std::string_view{};
+    const std::string_view lexeme = token.begin <= token.end && token.end <= text.size()
+                                        ? text.substr(token.begin, token.end - token.begin)
+                                        : std::string_view{};
     switch (token.kind) {
-    case TokenKind::Eof: return "end of file";
-    case TokenKind::Number: return "number " + quoted(lexeme);
-    case TokenKind::String: {
-        const std::string q = quoted(lexeme);  // 'text' → string "text" (quotes already inside)
-        return "string " + q.substr(1, q.size() - 2);
-    }
-    default: return quoted(lexeme);
+        case TokenKind::Eof:
+            return "end of file";
+        case TokenKind::Number:
+            return "number " + quoted(lexeme);
+        case TokenKind::String: {
+            const std::string q = quoted(lexeme);  // 'text' → string "text" (quotes already inside)
+            return "string " + q.substr(1, q.size() - 2);
+        }
+        default:
+            return quoted(lexeme);
     }
 }
 

@@ -36,8 +36,8 @@ private:
     double number_value(uint32_t begin, uint32_t end, bool integer);
     Token string_literal(uint32_t begin);
     Token identifier(uint32_t begin);
-    void bad_bytes(uint32_t begin);       // NUL, invalid UTF-8, stray characters: no token
-    uint32_t check_byte(uint32_t at);     // a NUL or non-ASCII byte in a comment or string
+    void bad_bytes(uint32_t begin);    // NUL, invalid UTF-8, stray characters: no token
+    uint32_t check_byte(uint32_t at);  // a NUL or non-ASCII byte in a comment or string
 
     uint32_t file_;
     std::string_view text_;

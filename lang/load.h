@@ -21,8 +21,8 @@ struct CheckSummary {
 };
 
 struct LoadOptions {
-    bool fragment = false;   // a `.wsdi` file: no camera required, nothing is built
-    bool build = true;       // build the render scene (loads textures, validates geometry)
+    bool fragment = false;  // a `.wsdi` file: no camera required, nothing is built
+    bool build = true;      // build the render scene (loads textures, validates geometry)
     bool use_bvh = true;
     int threads = 0;
     std::function<void(render::SceneSpec&)> adjust;  // command-line overrides, before building
@@ -38,8 +38,7 @@ struct LoadedScene {
 
 // `path` is used for messages and to resolve relative paths; `text` is the file's contents
 // (the caller reads it, so that I/O errors on command-line files stay the caller's).
-std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
-                                      SourceManager& sources, Diagnostics& diags,
-                                      const LoadOptions& options);
+std::optional<LoadedScene> load_scene(const std::string& path, std::string text, SourceManager& sources,
+                                      Diagnostics& diags, const LoadOptions& options);
 
 }  // namespace wsd::lang

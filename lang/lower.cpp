@@ -36,8 +36,8 @@ std::map<std::string_view, BlockTable> make_tables() {
                                    {"intensity", PropType::Number, at_least(0)}};
     t["light point"] = {"light point", light};
     for (std::string_view area_only : {"u", "v", "samples", "sampling", "adaptive"})
-        t["light point"].hints.emplace_back(area_only, "'" + std::string(area_only) +
-                                                           "' belongs to area lights: write 'light area { ... }'");
+        t["light point"].hints.emplace_back(
+            area_only, "'" + std::string(area_only) + "' belongs to area lights: write 'light area { ... }'");
     light.push_back({"u", PropType::Vector3});
     light.push_back({"v", PropType::Vector3});
     light.push_back({"samples", PropType::Integer, between(1, 1024), 1, 2});
@@ -48,9 +48,10 @@ std::map<std::string_view, BlockTable> make_tables() {
                    {{"center", PropType::Vector3}, {"radius", PropType::Number, above(0)}, kMaterialProperty},
                    true};
     t["box"] = {"box", {{"min", PropType::Vector3}, {"max", PropType::Vector3}, kMaterialProperty}, true};
-    t["triangle"] = {"triangle",
-                     {{"", PropType::Vector3, {}, 3, 3}, {"uv", PropType::Vector2, {}, 3, 3}, kMaterialProperty},
-                     true};
+    t["triangle"] = {
+        "triangle",
+        {{"", PropType::Vector3, {}, 3, 3}, {"uv", PropType::Vector2, {}, 3, 3}, kMaterialProperty},
+        true};
     t["plane"] = {"plane",
                   {{"normal", PropType::Vector3},
                    {"distance", PropType::Number},
@@ -79,7 +80,8 @@ std::map<std::string_view, BlockTable> make_tables() {
                       {"absorption", PropType::Colour},
                       {"bump", PropType::Texture},
                       {"bump_strength", PropType::Number, at_least(0)}}};
-    t["checker"] = {"checker", {{"scale", PropType::Number, above(0)}, {"colors", PropType::Colour, {}, 2, 2}}};
+    t["checker"] = {"checker",
+                    {{"scale", PropType::Number, above(0)}, {"colors", PropType::Colour, {}, 2, 2}}};
     t["perlin"] = {"perlin",
                    {{"kind", PropType::Word, {}, 1, 1, {"noise", "turbulence", "marble", "wood"}},
                     {"scale", PropType::NumberOrVector3},
@@ -104,10 +106,26 @@ bool parallel(glm::dvec3 a, glm::dvec3 b) {
 void sin_cos_degrees(double degrees, double& s, double& c) {
     double r = std::fmod(degrees, 360.0);
     if (r < 0) r += 360.0;
-    if (r == 0) { s = 0; c = 1; return; }
-    if (r == 90) { s = 1; c = 0; return; }
-    if (r == 180) { s = 0; c = -1; return; }
-    if (r == 270) { s = -1; c = 0; return; }
+    if (r == 0) {
+        s = 0;
+        c = 1;
+        return;
+    }
+    if (r == 90) {
+        s = 1;
+        c = 0;
+        return;
+    }
+    if (r == 180) {
+        s = 0;
+        c = -1;
+        return;
+    }
+    if (r == 270) {
+        s = -1;
+        c = 0;
+        return;
+    }
     double rad = degrees * (std::numbers::pi / 180.0);
     s = std::sin(rad);
     c = std::cos(rad);
@@ -150,8 +168,9 @@ void lower_box(BlockReader& r, LoweredObject& o) {
     if (ok && r.ok()) {
         glm::dvec3 lo = o.shape.box_min, hi = o.shape.box_max;
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
-            r.fail(r.value_span("max"), "box 'max' must be greater than 'min' in every component, found min " +
-                                            describe(*r.value("min")) + " and max " + describe(*r.value("max")));
+            r.fail(r.value_span("max"),
+                   "box 'max' must be greater than 'min' in every component, found min " +
+                       describe(*r.value("min")) + " and max " + describe(*r.value("max")));
     }
 }
 
@@ -163,7 +182,8 @@ void lower_triangle(BlockReader& r, LoweredObject& o) {
     if (v.size() == 3)
         for (int i = 0; i < 3; ++i) o.shape.v[i] = v[static_cast<size_t>(i)].vec3();
     const std::vector<Value>& uv = r.values("uv");
-    if (uv.size() == 3) o.shape.tri_uv = std::array<render::Vec2, 3>{uv[0].vec2(), uv[1].vec2(), uv[2].vec2()};
+    if (uv.size() == 3)
+        o.shape.tri_uv = std::array<render::Vec2, 3>{uv[0].vec2(), uv[1].vec2(), uv[2].vec2()};
 }
 
 void lower_plane(BlockReader& r, LoweredObject& o) {
@@ -215,13 +235,17 @@ render::Mat4 compose_transforms(const std::vector<Transform>& transforms) {
     for (const Transform& t : transforms) {
         render::Mat4 step(1.0);
         switch (t.kind) {
-        case TransformKind::Scale:
-            step[0][0] = t.v.x;
-            step[1][1] = t.v.y;
-            step[2][2] = t.v.z;
-            break;
-        case TransformKind::Rotate: step = rotation_matrix(t.v); break;
-        case TransformKind::Translate: step[3] = glm::dvec4(t.v, 1.0); break;
+            case TransformKind::Scale:
+                step[0][0] = t.v.x;
+                step[1][1] = t.v.y;
+                step[2][2] = t.v.z;
+                break;
+            case TransformKind::Rotate:
+                step = rotation_matrix(t.v);
+                break;
+            case TransformKind::Translate:
+                step[3] = glm::dvec4(t.v, 1.0);
+                break;
         }
         m = step * m;
     }
@@ -242,8 +266,10 @@ std::optional<render::Settings> lower_settings(const Stmt& stmt, BlockContext& c
     s.background = r.vec3("background", s.background);
     s.seed = static_cast<uint32_t>(r.integer("seed", s.seed));
     if (r.ok() && static_cast<double>(s.width) * s.height > kMaxPixels) {
-        std::string later = !r.has("height") || (r.has("width") && written_after(r, "width", "height")) ? "width" : "height";
-        r.fail(r.value_span(later), "image size " + std::to_string(s.width) + " x " + std::to_string(s.height) +
+        std::string later =
+            !r.has("height") || (r.has("width") && written_after(r, "width", "height")) ? "width" : "height";
+        r.fail(r.value_span(later), "image size " + std::to_string(s.width) + " x " +
+                                        std::to_string(s.height) +
                                         " exceeds the limit of 268435456 pixels (2^28)");
     }
     if (!r.ok()) return std::nullopt;
@@ -270,7 +296,8 @@ std::optional<render::CameraSpec> lower_camera(const Stmt& stmt, BlockContext& c
             r.fail(r.value_span("up"), "camera 'up' is parallel to the view direction (look_at - position)");
         else
             r.fail(r.value_span("look_at"),
-                   "camera looks along the default 'up' <0, 1, 0>: give an 'up' that is not parallel to look_at - position");
+                   "camera looks along the default 'up' <0, 1, 0>: give an 'up' that is not parallel to "
+                   "look_at - position");
     }
     if (!r.ok()) return std::nullopt;
     return c;
@@ -282,14 +309,16 @@ std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx
         l.kind = render::LightKind::Area;
     } else if (stmt.name != "point") {
         Span at = stmt.name.empty() ? stmt.keyword : stmt.name_span;
-        Diagnostic& d = ctx.diags.error(at, stmt.name.empty() ? std::string("light needs a kind: point or area")
-                                                              : "unknown light kind '" + stmt.name + "' (point or area)");
+        Diagnostic& d =
+            ctx.diags.error(at, stmt.name.empty() ? std::string("light needs a kind: point or area")
+                                                  : "unknown light kind '" + stmt.name + "' (point or area)");
         std::string match = closest_match(stmt.name, {"point", "area"});
         if (!stmt.name.empty() && !match.empty()) d.help.push_back("did you mean '" + match + "'?");
         return std::nullopt;
     }
     bool area = l.kind == render::LightKind::Area;
-    BlockReader r(block_table(area ? "light area" : "light point"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
+    BlockReader r(block_table(area ? "light area" : "light point"), stmt.block, stmt.keyword, ctx.diags,
+                  ctx.eval);
     r.require("position");
     l.position = r.vec3("position", l.position);
     l.color = r.vec3("color", l.color);
@@ -305,7 +334,7 @@ std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx
             l.samples_v = static_cast<int>(samples.size() > 1 ? samples[1].number() : samples[0].number());
         }
         l.sampling = r.word("sampling", "jittered") == "uniform" ? render::LightSampling::Uniform
-                                                                  : render::LightSampling::Jittered;
+                                                                 : render::LightSampling::Jittered;
         l.adaptive = r.boolean("adaptive", l.adaptive);
         if (r.ok()) {
             if (l.u == glm::dvec3(0.0))
@@ -313,7 +342,8 @@ std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx
             else if (l.v == glm::dvec3(0.0))
                 r.fail(r.value_span("v"), "area light edge 'v' must not be the zero vector");
             else if (parallel(l.u, l.v))
-                r.fail(r.value_span(written_after(r, "u", "v") ? "u" : "v"), "area light edges 'u' and 'v' are parallel");
+                r.fail(r.value_span(written_after(r, "u", "v") ? "u" : "v"),
+                       "area light edges 'u' and 'v' are parallel");
             if (static_cast<long long>(l.samples_u) * l.samples_v > kMaxLightSamples)
                 r.fail(r.value_span("samples"), "area light has " + std::to_string(l.samples_u) + " x " +
                                                     std::to_string(l.samples_v) +
@@ -327,22 +357,43 @@ std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx
 std::optional<LoweredObject> lower_object(const Stmt& stmt, BlockContext& ctx) {
     const char* what = "sphere";
     switch (stmt.block_kind) {
-    case BlockKind::Sphere: what = "sphere"; break;
-    case BlockKind::Box: what = "box"; break;
-    case BlockKind::Triangle: what = "triangle"; break;
-    case BlockKind::Plane: what = "plane"; break;
-    case BlockKind::Mesh: what = "mesh"; break;
-    default: return std::nullopt;
+        case BlockKind::Sphere:
+            what = "sphere";
+            break;
+        case BlockKind::Box:
+            what = "box";
+            break;
+        case BlockKind::Triangle:
+            what = "triangle";
+            break;
+        case BlockKind::Plane:
+            what = "plane";
+            break;
+        case BlockKind::Mesh:
+            what = "mesh";
+            break;
+        default:
+            return std::nullopt;
     }
     BlockReader r(block_table(what), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     LoweredObject o;
     o.record.span = stmt.keyword;
     switch (stmt.block_kind) {
-    case BlockKind::Sphere: lower_sphere(r, o); break;
-    case BlockKind::Box: lower_box(r, o); break;
-    case BlockKind::Triangle: lower_triangle(r, o); break;
-    case BlockKind::Plane: lower_plane(r, o); break;
-    default: lower_mesh(r, ctx, o); break;
+        case BlockKind::Sphere:
+            lower_sphere(r, o);
+            break;
+        case BlockKind::Box:
+            lower_box(r, o);
+            break;
+        case BlockKind::Triangle:
+            lower_triangle(r, o);
+            break;
+        case BlockKind::Plane:
+            lower_plane(r, o);
+            break;
+        default:
+            lower_mesh(r, ctx, o);
+            break;
     }
     std::optional<MaterialPtr> material = object_material(r, ctx);
     if (!material) r.failed();

@@ -29,10 +29,10 @@ struct FaceSpans {
 
 // What a spec element's `tag` points at (one per element: kept small).
 struct SpanRecord {
-    Span span;           // the element's keyword, or an image's/OBJ file's path string
-    IncludeChain chain;  // the includes that led to the file of `span`
+    Span span;                               // the element's keyword, or an image's/OBJ file's path string
+    IncludeChain chain;                      // the includes that led to the file of `span`
     std::shared_ptr<const FaceSpans> faces;  // inline meshes
-    bool obj = false;    // a mesh whose faces come from the OBJ file named at `span`
+    bool obj = false;                        // a mesh whose faces come from the OBJ file named at `span`
 };
 
 using ObjCache = std::map<std::string, std::shared_ptr<const render::MeshData>>;

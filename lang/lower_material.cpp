@@ -41,7 +41,8 @@ TexturePtr lower_image(const Expr& expr, BlockContext& ctx) {
     std::optional<Value> path = ctx.eval(path_expr);
     if (!path) return nullptr;
     if (!path->is(ValueType::String)) {
-        ctx.diags.error(path_expr.span, std::string("'image' needs a file name (a string), found ") + type_name(path->type()));
+        ctx.diags.error(path_expr.span, std::string("'image' needs a file name (a string), found ") +
+                                            type_name(path->type()));
         return nullptr;
     }
     if (path->string().empty()) {
@@ -98,10 +99,14 @@ TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
 
 TexturePtr lower_texture(const Expr& expr, BlockContext& ctx) {
     switch (expr.kind) {
-    case ExprKind::Image: return lower_image(expr, ctx);
-    case ExprKind::Checker: return expr.block ? lower_checker(expr, ctx) : nullptr;
-    case ExprKind::Perlin: return expr.block ? lower_perlin(expr, ctx) : nullptr;
-    default: return nullptr;
+        case ExprKind::Image:
+            return lower_image(expr, ctx);
+        case ExprKind::Checker:
+            return expr.block ? lower_checker(expr, ctx) : nullptr;
+        case ExprKind::Perlin:
+            return expr.block ? lower_perlin(expr, ctx) : nullptr;
+        default:
+            return nullptr;
     }
 }
 
@@ -132,8 +137,10 @@ MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
     s.bump_strength = r.number("bump_strength", s.bump_strength);
     if (const Value* bump = r.value("bump")) {
         if (bump->texture()->spec.kind != render::TextureKind::Perlin) {
-            const char* kind = bump->texture()->spec.kind == render::TextureKind::Image ? "an image" : "a checker";
-            r.fail(r.value_span("bump"), std::string("'bump' must be a perlin texture, found ") + kind + " texture");
+            const char* kind =
+                bump->texture()->spec.kind == render::TextureKind::Image ? "an image" : "a checker";
+            r.fail(r.value_span("bump"),
+                   std::string("'bump' must be a perlin texture, found ") + kind + " texture");
         }
         m->bump = bump->texture();
     }
@@ -141,21 +148,28 @@ MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
         // At the later of the two as written; a value inherited from `base` counts as earlier.
         bool has_r = r.has("reflection"), has_t = r.has("transmission");
         std::string later = has_r && (!has_t || written_after(r, "reflection", "transmission"))
-                                ? "reflection" : "transmission";
+                                ? "reflection"
+                                : "transmission";
         std::string other = later == "reflection" ? "transmission" : "reflection";
-        Diagnostic& d = ctx.diags.error(r.value_span(later),
-                                        "'reflection' + 'transmission' must not exceed 1, found " +
-                                            format_number(s.reflection) + " + " + format_number(s.transmission));
+        Diagnostic& d = ctx.diags.error(
+            r.value_span(later), "'reflection' + 'transmission' must not exceed 1, found " +
+                                     format_number(s.reflection) + " + " + format_number(s.transmission));
         Span other_span = r.has(other) ? r.value_span(other) : r.value_span("base");
-        d.notes.push_back({other_span, "'" + other + "' is " + format_number(other == "reflection" ? s.reflection : s.transmission) +
-                                           (r.has(other) ? " here" : ", from 'base'")});
+        d.notes.push_back(
+            {other_span, "'" + other + "' is " +
+                             format_number(other == "reflection" ? s.reflection : s.transmission) +
+                             (r.has(other) ? " here" : ", from 'base'")});
         r.failed();
     }
     if (!r.ok()) return nullptr;
-    if (m->texture) s.texture = m->texture->spec;
-    else s.texture.reset();
-    if (m->bump) s.bump = m->bump->spec;
-    else s.bump.reset();
+    if (m->texture)
+        s.texture = m->texture->spec;
+    else
+        s.texture.reset();
+    if (m->bump)
+        s.bump = m->bump->spec;
+    else
+        s.bump.reset();
     return m;
 }
 

@@ -13,7 +13,9 @@ namespace {
 
 constexpr size_t kMaxPrimitives = size_t(1) << 24;
 
-bool fits_float(double x) { return std::fabs(x) <= FLT_MAX; }
+bool fits_float(double x) {
+    return std::fabs(x) <= FLT_MAX;
+}
 
 std::string vertex_count_text(size_t n) {
     return std::to_string(n) + (n == 1 ? " vertex" : " vertices");
@@ -39,8 +41,8 @@ bool read_vec3_list(BlockReader& r, BlockContext& ctx, const ListValue& list, co
             v = e.vec3();
         }
         if (!fits_float(v.x) || !fits_float(v.y) || !fits_float(v.z)) {
-            r.fail(list.span_of(i, ctx.sources), std::string(noun) + " " + std::to_string(i) +
-                                                     " is too large for single precision");
+            r.fail(list.span_of(i, ctx.sources),
+                   std::string(noun) + " " + std::to_string(i) + " is too large for single precision");
             return false;
         }
         out.emplace_back(v);
@@ -61,8 +63,8 @@ bool read_faces(BlockReader& r, BlockContext& ctx, const ListValue& list, size_t
         } else {
             const Value e = list.at(i, ctx.sources);  // a packed list of vector2 lands here too
             if (!e.is(ValueType::Vector3)) {
-                r.fail(e.span(), "face " + std::to_string(i) + " must be a vector3 of vertex indices, found " +
-                                     type_name(e.type()));
+                r.fail(e.span(), "face " + std::to_string(i) +
+                                     " must be a vector3 of vertex indices, found " + type_name(e.type()));
                 return false;
             }
             f = e.vec3();
@@ -81,7 +83,8 @@ bool read_faces(BlockReader& r, BlockContext& ctx, const ListValue& list, size_t
                 return false;
             }
         }
-        mesh.faces.emplace_back(static_cast<uint32_t>(f.x), static_cast<uint32_t>(f.y), static_cast<uint32_t>(f.z));
+        mesh.faces.emplace_back(static_cast<uint32_t>(f.x), static_cast<uint32_t>(f.y),
+                                static_cast<uint32_t>(f.z));
     }
     if (packed) {
         record.file = list.packed->file;
@@ -128,7 +131,8 @@ bool lower_inline(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         for (size_t i = 0; i < uvs.size(); ++i) {
             Value e = uvs.at(i, ctx.sources);
             if (!e.is(ValueType::Vector2)) {
-                r.fail(e.span(), "uv " + std::to_string(i) + " must be a vector2, found " + type_name(e.type()));
+                r.fail(e.span(),
+                       "uv " + std::to_string(i) + " must be a vector2, found " + type_name(e.type()));
                 return false;
             }
             if (!fits_float(e.vec2().x) || !fits_float(e.vec2().y)) {
@@ -144,7 +148,8 @@ bool lower_inline(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         if (!read_vec3_list(r, ctx, normals, "normal", mesh->normals)) return false;
         for (size_t i = 0; i < nv; ++i) {
             if (mesh->normals[i] == glm::vec3(0.0f)) {
-                r.fail(normals.span_of(i, ctx.sources), "normal " + std::to_string(i) + " is the zero vector");
+                r.fail(normals.span_of(i, ctx.sources),
+                       "normal " + std::to_string(i) + " is the zero vector");
                 return false;
             }
         }
@@ -202,7 +207,8 @@ bool lower_mesh(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
     if (r.has("file")) {
         for (const char* other : {"vertices", "faces", "uvs", "normals"})
             if (r.has(other))
-                r.fail(r.name_span(other), std::string(1, '\'').append(other) + "' cannot be combined with 'file' in mesh");
+                r.fail(r.name_span(other),
+                       std::string(1, '\'').append(other) + "' cannot be combined with 'file' in mesh");
         if (!r.ok()) return false;
         return lower_file(r, ctx, o);
     }

@@ -16,20 +16,34 @@ constexpr int comparison_precedence = 4;
 
 BinaryInfo binary_info(TokenKind k) {
     switch (k) {
-    case TokenKind::OrOr: return {BinaryOp::Or, 1};
-    case TokenKind::AndAnd: return {BinaryOp::And, 2};
-    case TokenKind::EqEq: return {BinaryOp::Eq, 3};
-    case TokenKind::NotEq: return {BinaryOp::Ne, 3};
-    case TokenKind::Less: return {BinaryOp::Lt, 4};
-    case TokenKind::LessEq: return {BinaryOp::Le, 4};
-    case TokenKind::Greater: return {BinaryOp::Gt, 4};
-    case TokenKind::GreaterEq: return {BinaryOp::Ge, 4};
-    case TokenKind::Plus: return {BinaryOp::Add, 5};
-    case TokenKind::Minus: return {BinaryOp::Sub, 5};
-    case TokenKind::Star: return {BinaryOp::Mul, 6};
-    case TokenKind::Slash: return {BinaryOp::Div, 6};
-    case TokenKind::Percent: return {BinaryOp::Mod, 6};
-    default: return {BinaryOp::Add, 0};
+        case TokenKind::OrOr:
+            return {BinaryOp::Or, 1};
+        case TokenKind::AndAnd:
+            return {BinaryOp::And, 2};
+        case TokenKind::EqEq:
+            return {BinaryOp::Eq, 3};
+        case TokenKind::NotEq:
+            return {BinaryOp::Ne, 3};
+        case TokenKind::Less:
+            return {BinaryOp::Lt, 4};
+        case TokenKind::LessEq:
+            return {BinaryOp::Le, 4};
+        case TokenKind::Greater:
+            return {BinaryOp::Gt, 4};
+        case TokenKind::GreaterEq:
+            return {BinaryOp::Ge, 4};
+        case TokenKind::Plus:
+            return {BinaryOp::Add, 5};
+        case TokenKind::Minus:
+            return {BinaryOp::Sub, 5};
+        case TokenKind::Star:
+            return {BinaryOp::Mul, 6};
+        case TokenKind::Slash:
+            return {BinaryOp::Div, 6};
+        case TokenKind::Percent:
+            return {BinaryOp::Mod, 6};
+        default:
+            return {BinaryOp::Add, 0};
     }
 }
 
@@ -56,7 +70,8 @@ ExprPtr Parser::parse_binary(int min_precedence) {
         if (in_vector_ && info.precedence == comparison_precedence) {
             if (check(TokenKind::Greater) || check(TokenKind::GreaterEq)) break;  // closes the vector
             const std::string op(lexeme(tok_));
-            if (Diagnostic* d = error_here("comparison '" + op + "' inside a vector literal needs parentheses"))
+            if (Diagnostic* d =
+                    error_here("comparison '" + op + "' inside a vector literal needs parentheses"))
                 d->help.push_back("write the comparison in parentheses: <(a " + op + " b), ...>");
         }
         const Token op = tok_;
@@ -137,48 +152,54 @@ ExprPtr Parser::parse_postfix() {
 ExprPtr Parser::parse_primary() {
     const Token t = tok_;
     switch (t.kind) {
-    case TokenKind::Number: {
-        advance();
-        ExprPtr e = make(ExprKind::Number, span_of(t));
-        e->number = t.number;
-        return e;
-    }
-    case TokenKind::String: {
-        advance();
-        ExprPtr e = make(ExprKind::String, span_of(t));
-        e->text = decode_string(lexeme(t));
-        return e;
-    }
-    case TokenKind::True:
-    case TokenKind::False: {
-        advance();
-        ExprPtr e = make(ExprKind::Bool, span_of(t));
-        e->boolean = t.kind == TokenKind::True;
-        return e;
-    }
-    case TokenKind::Ident: {
-        advance();
-        if (check(TokenKind::LParen)) return parse_call(t);
-        ExprPtr e = make(ExprKind::Ident, span_of(t));
-        e->text = std::string(lexeme(t));
-        return e;
-    }
-    case TokenKind::LParen: return parse_group();
-    case TokenKind::Less: return parse_vector();
-    case TokenKind::LBracket: return parse_list();
-    case TokenKind::Material: return parse_block_expr(ExprKind::Material, "material");
-    case TokenKind::Checker: return parse_block_expr(ExprKind::Checker, "checker");
-    case TokenKind::Perlin: return parse_block_expr(ExprKind::Perlin, "perlin");
-    case TokenKind::Image: {
-        advance();
-        ExprPtr path = parse_expression();
-        ExprPtr e = make(ExprKind::Image, {file_, t.begin, path->span.end});
-        e->args.push_back(std::move(path));
-        return e;
-    }
-    default:
-        error_here("expected an expression, found " + found());
-        return bad_here();
+        case TokenKind::Number: {
+            advance();
+            ExprPtr e = make(ExprKind::Number, span_of(t));
+            e->number = t.number;
+            return e;
+        }
+        case TokenKind::String: {
+            advance();
+            ExprPtr e = make(ExprKind::String, span_of(t));
+            e->text = decode_string(lexeme(t));
+            return e;
+        }
+        case TokenKind::True:
+        case TokenKind::False: {
+            advance();
+            ExprPtr e = make(ExprKind::Bool, span_of(t));
+            e->boolean = t.kind == TokenKind::True;
+            return e;
+        }
+        case TokenKind::Ident: {
+            advance();
+            if (check(TokenKind::LParen)) return parse_call(t);
+            ExprPtr e = make(ExprKind::Ident, span_of(t));
+            e->text = std::string(lexeme(t));
+            return e;
+        }
+        case TokenKind::LParen:
+            return parse_group();
+        case TokenKind::Less:
+            return parse_vector();
+        case TokenKind::LBracket:
+            return parse_list();
+        case TokenKind::Material:
+            return parse_block_expr(ExprKind::Material, "material");
+        case TokenKind::Checker:
+            return parse_block_expr(ExprKind::Checker, "checker");
+        case TokenKind::Perlin:
+            return parse_block_expr(ExprKind::Perlin, "perlin");
+        case TokenKind::Image: {
+            advance();
+            ExprPtr path = parse_expression();
+            ExprPtr e = make(ExprKind::Image, {file_, t.begin, path->span.end});
+            e->args.push_back(std::move(path));
+            return e;
+        }
+        default:
+            error_here("expected an expression, found " + found());
+            return bad_here();
     }
 }
 
@@ -284,7 +305,8 @@ void Parser::close_vector() {
     lexer_.reset(closer.begin + 1);
     tok_ = lexer_.next();
     if (check(TokenKind::Assign)) {
-        if (Diagnostic* d = error(span_of(closer), "comparison '>=' inside a vector literal needs parentheses"))
+        if (Diagnostic* d =
+                error(span_of(closer), "comparison '>=' inside a vector literal needs parentheses"))
             d->help.push_back("at a vector literal's own level '>' closes it; write <(a >= b), ...>");
     }
 }

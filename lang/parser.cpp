@@ -12,9 +12,8 @@ namespace detail {
 
 namespace {
 
-const std::vector<std::string> statement_words = {
-    "let", "for", "if", "include", "settings", "camera", "light",
-    "sphere", "box", "triangle", "plane", "mesh"};
+const std::vector<std::string> statement_words = {"let",   "for",    "if",  "include",  "settings", "camera",
+                                                  "light", "sphere", "box", "triangle", "plane",    "mesh"};
 
 }  // namespace
 
@@ -116,15 +115,25 @@ std::vector<StmtPtr> Parser::parse_statements(bool top_level) {
 // statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt ;
 StmtPtr Parser::parse_statement() {
     switch (tok_.kind) {
-    case TokenKind::Let: return parse_let();
-    case TokenKind::For: return parse_for();
-    case TokenKind::If: return parse_if();
-    case TokenKind::Include: return parse_include();
-    case TokenKind::Settings: case TokenKind::Camera: case TokenKind::Light:
-    case TokenKind::Sphere: case TokenKind::Box: case TokenKind::Triangle:
-    case TokenKind::Plane: case TokenKind::Mesh:
-        return parse_object();
-    default: break;
+        case TokenKind::Let:
+            return parse_let();
+        case TokenKind::For:
+            return parse_for();
+        case TokenKind::If:
+            return parse_if();
+        case TokenKind::Include:
+            return parse_include();
+        case TokenKind::Settings:
+        case TokenKind::Camera:
+        case TokenKind::Light:
+        case TokenKind::Sphere:
+        case TokenKind::Box:
+        case TokenKind::Triangle:
+        case TokenKind::Plane:
+        case TokenKind::Mesh:
+            return parse_object();
+        default:
+            break;
     }
     auto bad = std::make_unique<Stmt>();
     bad->kind = StmtKind::Bad;
@@ -138,8 +147,11 @@ StmtPtr Parser::parse_statement() {
         if (check(TokenKind::Ident)) {
             const std::string word(lexeme(tok_));
             size_t p = tok_.end;
-            while (p < text_.size() && (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\r' || text_[p] == '\n')) ++p;
-            const bool assign = p < text_.size() && text_[p] == '=' && (p + 1 == text_.size() || text_[p + 1] != '=');
+            while (p < text_.size() &&
+                   (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\r' || text_[p] == '\n'))
+                ++p;
+            const bool assign =
+                p < text_.size() && text_[p] == '=' && (p + 1 == text_.size() || text_[p + 1] != '=');
             const std::string match = closest_match(word, statement_words);
             if (assign)
                 help = "to bind a name, write 'let " + word + " = ...'";
@@ -155,13 +167,15 @@ StmtPtr Parser::parse_statement() {
 
 bool Parser::parse_name(std::string& name, Span& span, const char* after) {
     // `for in xs`: the name is missing, not spelled `in`.
-    const bool keyword = tok_.kind >= TokenKind::Let && tok_.kind <= TokenKind::False && !check(TokenKind::In);
+    const bool keyword =
+        tok_.kind >= TokenKind::Let && tok_.kind <= TokenKind::False && !check(TokenKind::In);
     if (check(TokenKind::Ident) || keyword) {
         if (!check(TokenKind::Ident)) {
             // A reserved word in a name's place: report it and read it as the name, so the rest
             // of the statement parses normally.
             const std::string word(lexeme(tok_));
-            if (Diagnostic* d = error_here("expected a name after '" + std::string(after) + "', found keyword '" + word + "'"))
+            if (Diagnostic* d = error_here("expected a name after '" + std::string(after) +
+                                           "', found keyword '" + word + "'"))
                 d->help.push_back("'" + word + "' is a reserved word; choose another name");
             panic_ = false;
         }
@@ -293,14 +307,30 @@ StmtPtr Parser::parse_object() {
     const TokenKind kind = tok_.kind;
     const std::string word(lexeme(tok_));
     switch (kind) {
-    case TokenKind::Settings: s->block_kind = BlockKind::Settings; break;
-    case TokenKind::Camera: s->block_kind = BlockKind::Camera; break;
-    case TokenKind::Light: s->block_kind = BlockKind::Light; break;
-    case TokenKind::Sphere: s->block_kind = BlockKind::Sphere; break;
-    case TokenKind::Box: s->block_kind = BlockKind::Box; break;
-    case TokenKind::Triangle: s->block_kind = BlockKind::Triangle; break;
-    case TokenKind::Plane: s->block_kind = BlockKind::Plane; break;
-    default: s->block_kind = BlockKind::Mesh; break;
+        case TokenKind::Settings:
+            s->block_kind = BlockKind::Settings;
+            break;
+        case TokenKind::Camera:
+            s->block_kind = BlockKind::Camera;
+            break;
+        case TokenKind::Light:
+            s->block_kind = BlockKind::Light;
+            break;
+        case TokenKind::Sphere:
+            s->block_kind = BlockKind::Sphere;
+            break;
+        case TokenKind::Box:
+            s->block_kind = BlockKind::Box;
+            break;
+        case TokenKind::Triangle:
+            s->block_kind = BlockKind::Triangle;
+            break;
+        case TokenKind::Plane:
+            s->block_kind = BlockKind::Plane;
+            break;
+        default:
+            s->block_kind = BlockKind::Mesh;
+            break;
     }
     advance();
     if (kind == TokenKind::Light) {
@@ -320,7 +350,8 @@ StmtPtr Parser::parse_object() {
             // is parsed normally, with its own errors.
             if (parse_block(s->block, word + " block", kind == TokenKind::Triangle)) panic_ = false;
         } else {
-            error_here("expected '{' after '" + (kind == TokenKind::Light && !s->name.empty() ? "light " + s->name : word) +
+            error_here("expected '{' after '" +
+                       (kind == TokenKind::Light && !s->name.empty() ? "light " + s->name : word) +
                        "', found " + found());
         }
     }
@@ -377,15 +408,22 @@ bool Parser::starts_vertex_list() {
     if (!starts_expression(tok_.kind)) return false;
     if (!check(TokenKind::Ident) && !check(TokenKind::Material)) return true;
     switch (peek().kind) {
-    case TokenKind::Number: case TokenKind::String: case TokenKind::Ident:
-    case TokenKind::True: case TokenKind::False: case TokenKind::Less:
-    case TokenKind::Bang: case TokenKind::Material: case TokenKind::Image:
-    case TokenKind::Checker: case TokenKind::Perlin:
-        return false;
-    case TokenKind::LBrace:
-        return !check(TokenKind::Material);
-    default:
-        return true;
+        case TokenKind::Number:
+        case TokenKind::String:
+        case TokenKind::Ident:
+        case TokenKind::True:
+        case TokenKind::False:
+        case TokenKind::Less:
+        case TokenKind::Bang:
+        case TokenKind::Material:
+        case TokenKind::Image:
+        case TokenKind::Checker:
+        case TokenKind::Perlin:
+            return false;
+        case TokenKind::LBrace:
+            return !check(TokenKind::Material);
+        default:
+            return true;
     }
 }
 

@@ -13,14 +13,23 @@ namespace wsd::lang::detail {
 
 inline bool starts_expression(TokenKind k) {
     switch (k) {
-    case TokenKind::Number: case TokenKind::String: case TokenKind::Ident:
-    case TokenKind::True: case TokenKind::False: case TokenKind::LParen:
-    case TokenKind::LBracket: case TokenKind::Less: case TokenKind::Minus:
-    case TokenKind::Bang: case TokenKind::Material: case TokenKind::Image:
-    case TokenKind::Checker: case TokenKind::Perlin:
-        return true;
-    default:
-        return false;
+        case TokenKind::Number:
+        case TokenKind::String:
+        case TokenKind::Ident:
+        case TokenKind::True:
+        case TokenKind::False:
+        case TokenKind::LParen:
+        case TokenKind::LBracket:
+        case TokenKind::Less:
+        case TokenKind::Minus:
+        case TokenKind::Bang:
+        case TokenKind::Material:
+        case TokenKind::Image:
+        case TokenKind::Checker:
+        case TokenKind::Perlin:
+            return true;
+        default:
+            return false;
     }
 }
 
@@ -112,8 +121,8 @@ private:
     Lexer lexer_;
     Token tok_, prev_, peek_;
     bool has_peek_ = false;
-    bool panic_ = false;   // an error was reported; stay quiet until resynchronized
-    bool bailed_ = false;  // nesting limit or too many errors: the parse winds down
+    bool panic_ = false;      // an error was reported; stay quiet until resynchronized
+    bool bailed_ = false;     // nesting limit or too many errors: the parse winds down
     bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
     int depth_ = 0;
 };

@@ -31,36 +31,58 @@ std::string join_words(const std::vector<std::string_view>& words) {
 
 std::string expected_type(PropType t) {
     switch (t) {
-    case PropType::Number: return "a number";
-    case PropType::Integer: return "an integer";
-    case PropType::Bool: return "a bool";
-    case PropType::String: return "a string";
-    case PropType::Vector2: return "a vector2";
-    case PropType::Vector3: return "a vector3";
-    case PropType::Colour: return "a colour (vector3)";
-    case PropType::Material: return "a material";
-    case PropType::Texture: return "a texture";
-    case PropType::List: return "a list";
-    case PropType::Word: return "a word";
-    case PropType::NumberOrVector3: return "a number or a vector3";
+        case PropType::Number:
+            return "a number";
+        case PropType::Integer:
+            return "an integer";
+        case PropType::Bool:
+            return "a bool";
+        case PropType::String:
+            return "a string";
+        case PropType::Vector2:
+            return "a vector2";
+        case PropType::Vector3:
+            return "a vector3";
+        case PropType::Colour:
+            return "a colour (vector3)";
+        case PropType::Material:
+            return "a material";
+        case PropType::Texture:
+            return "a texture";
+        case PropType::List:
+            return "a list";
+        case PropType::Word:
+            return "a word";
+        case PropType::NumberOrVector3:
+            return "a number or a vector3";
     }
     return "a value";
 }
 
 bool type_matches(PropType t, const Value& v) {
     switch (t) {
-    case PropType::Number:
-    case PropType::Integer: return v.is(ValueType::Number);
-    case PropType::Bool: return v.is(ValueType::Bool);
-    case PropType::String: return v.is(ValueType::String);
-    case PropType::Vector2: return v.is(ValueType::Vector2);
-    case PropType::Vector3:
-    case PropType::Colour: return v.is(ValueType::Vector3);
-    case PropType::Material: return v.is(ValueType::Material);
-    case PropType::Texture: return v.is(ValueType::Texture);
-    case PropType::List: return v.is(ValueType::List);
-    case PropType::NumberOrVector3: return v.is(ValueType::Number) || v.is(ValueType::Vector3);
-    case PropType::Word: return false;
+        case PropType::Number:
+        case PropType::Integer:
+            return v.is(ValueType::Number);
+        case PropType::Bool:
+            return v.is(ValueType::Bool);
+        case PropType::String:
+            return v.is(ValueType::String);
+        case PropType::Vector2:
+            return v.is(ValueType::Vector2);
+        case PropType::Vector3:
+        case PropType::Colour:
+            return v.is(ValueType::Vector3);
+        case PropType::Material:
+            return v.is(ValueType::Material);
+        case PropType::Texture:
+            return v.is(ValueType::Texture);
+        case PropType::List:
+            return v.is(ValueType::List);
+        case PropType::NumberOrVector3:
+            return v.is(ValueType::Number) || v.is(ValueType::Vector3);
+        case PropType::Word:
+            return false;
     }
     return false;
 }
@@ -72,8 +94,8 @@ const std::vector<std::string_view> kTransformNames = {"scale", "rotate", "trans
 std::string Range::describe() const {
     bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
     if (has_lo && has_hi)
-        return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
-               format_number(hi) + (hi_open ? ")" : "]");
+        return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
+               (hi_open ? ")" : "]");
     if (has_lo) return std::string(lo_open ? "> " : ">= ") + format_number(lo);
     if (has_hi) return std::string(hi_open ? "< " : "<= ") + format_number(hi);
     return "finite";
@@ -85,8 +107,8 @@ const Property* BlockTable::find(std::string_view name) const {
     return nullptr;
 }
 
-BlockReader::BlockReader(const BlockTable& table, const Block& block, Span keyword,
-                         Diagnostics& diags, const EvalFn& eval)
+BlockReader::BlockReader(const BlockTable& table, const Block& block, Span keyword, Diagnostics& diags,
+                         const EvalFn& eval)
     : table_(table), keyword_(keyword), diags_(diags), eval_(eval), slots_(table.properties.size()) {
     for (const Item& item : block.items) {
         if (diags_.too_many()) {
@@ -109,8 +131,7 @@ const BlockReader::Slot* BlockReader::slot(std::string_view name) const {
 }
 
 void BlockReader::read_item(const Item& item) {
-    if (table_.transforms &&
-        (item.name == "scale" || item.name == "rotate" || item.name == "translate")) {
+    if (table_.transforms && (item.name == "scale" || item.name == "rotate" || item.name == "translate")) {
         read_transform(item);
         return;
     }
@@ -121,7 +142,8 @@ void BlockReader::read_item(const Item& item) {
             fail(at, "expected a property name in " + table_.what);
             return;
         }
-        Diagnostic& d = diags_.error(item.name_span, "unknown property " + quoted(item.name) + " in " + table_.what);
+        Diagnostic& d =
+            diags_.error(item.name_span, "unknown property " + quoted(item.name) + " in " + table_.what);
         std::vector<std::string> candidates;
         for (const Property& q : table_.properties)
             if (!q.name.empty()) candidates.emplace_back(q.name);
@@ -142,8 +164,8 @@ void BlockReader::read_item(const Item& item) {
     Slot& s = slots_[static_cast<size_t>(p - table_.properties.data())];
     if (s.item) {
         Span at = item.name.empty() && !item.values.empty() ? item.values[0]->span : item.name_span;
-        Span first = s.item->name.empty() && !s.item->values.empty() ? s.item->values[0]->span
-                                                                     : s.item->name_span;
+        Span first =
+            s.item->name.empty() && !s.item->values.empty() ? s.item->values[0]->span : s.item->name_span;
         Diagnostic& d = diags_.error(at, "repeated property " + quoted(item.name) + " in " + table_.what);
         d.notes.push_back({first, "first given here"});
         ok_ = false;
@@ -189,8 +211,10 @@ bool BlockReader::check_count(const Property& p, const Item& item) {
 std::optional<Value> BlockReader::read_value(const Property& p, const Expr& expr) {
     if (p.type == PropType::Word) {
         // Enumerated values are bare words: read the identifier's name, never evaluate it.
-        if (expr.kind != ExprKind::Ident || std::find(p.words.begin(), p.words.end(), expr.text) == p.words.end()) {
-            Diagnostic& d = diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words));
+        if (expr.kind != ExprKind::Ident ||
+            std::find(p.words.begin(), p.words.end(), expr.text) == p.words.end()) {
+            Diagnostic& d =
+                diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words));
             if (expr.kind == ExprKind::Ident) {
                 std::vector<std::string> candidates(p.words.begin(), p.words.end());
                 std::string match = closest_match(expr.text, candidates);
@@ -209,21 +233,25 @@ std::optional<Value> BlockReader::read_value(const Property& p, const Expr& expr
 bool BlockReader::check_value(const Property& p, const Value& v, const Expr& expr) {
     auto name = [&] { return p.name.empty() ? "a vertex of " + table_.what : quoted(p.name); };
     if (!type_matches(p.type, v)) {
-        diags_.error(expr.span, name() + " must be " + expected_type(p.type) + ", found " + type_name(v.type()));
+        diags_.error(expr.span,
+                     name() + " must be " + expected_type(p.type) + ", found " + type_name(v.type()));
         return false;
     }
     if (p.type == PropType::Integer) {
         double x = v.number();
         bool integral = x == std::floor(x);
         if (!integral || !p.range.contains(x)) {
-            std::string range = p.range.unbounded() ? "" : " from " + format_number(p.range.lo) + " to " + format_number(p.range.hi);
+            std::string range = p.range.unbounded() ? ""
+                                                    : " from " + format_number(p.range.lo) + " to " +
+                                                          format_number(p.range.hi);
             diags_.error(expr.span, name() + " must be an integer" + range + ", found " + format_number(x));
             return false;
         }
         return true;
     }
     if (p.type == PropType::Number && !p.range.contains(v.number())) {
-        diags_.error(expr.span, name() + " must be " + p.range.describe() + ", found " + format_number(v.number()));
+        diags_.error(expr.span,
+                     name() + " must be " + p.range.describe() + ", found " + format_number(v.number()));
         return false;
     }
     if (p.type == PropType::Colour) {
@@ -259,7 +287,8 @@ void BlockReader::read_transform(const Item& item) {
         for (int i = 0; i < 3; ++i) {
             double m = std::fabs(t.v[i]);
             if (m < kMinScale || m > kMaxScale) {
-                fail(expr.span, "'scale' factors must have a magnitude in [1e-12, 1e12], found " + describe(*v));
+                fail(expr.span,
+                     "'scale' factors must have a magnitude in [1e-12, 1e12], found " + describe(*v));
                 return;
             }
         }

@@ -5,13 +5,12 @@
 #pragma once
 
 #include <functional>
+#include <glm/glm.hpp>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
@@ -21,16 +20,16 @@ namespace wsd::lang {
 
 enum class PropType {
     Number,
-    Integer,   // a number with an integral value
+    Integer,  // a number with an integral value
     Bool,
     String,
     Vector2,
     Vector3,
-    Colour,    // a vector3 with components >= 0
+    Colour,  // a vector3 with components >= 0
     Material,
     Texture,
     List,
-    Word,      // a bare identifier from `words`, read without evaluating it
+    Word,  // a bare identifier from `words`, read without evaluating it
     NumberOrVector3,
 };
 
@@ -38,16 +37,20 @@ struct Range {
     double lo = -std::numeric_limits<double>::infinity();
     double hi = std::numeric_limits<double>::infinity();
     bool lo_open = false, hi_open = false;
-    bool contains(double x) const {
-        return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-    }
+    bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
     bool unbounded() const { return lo == -hi && hi == std::numeric_limits<double>::infinity(); }
     std::string describe() const;  // "> 0", "in [0, 1)", ">= 0"
 };
 
-constexpr Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, false}; }
-constexpr Range above(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), true, false}; }
-constexpr Range between(double lo, double hi) { return Range{lo, hi, false, false}; }
+constexpr Range at_least(double lo) {
+    return Range{lo, std::numeric_limits<double>::infinity(), false, false};
+}
+constexpr Range above(double lo) {
+    return Range{lo, std::numeric_limits<double>::infinity(), true, false};
+}
+constexpr Range between(double lo, double hi) {
+    return Range{lo, hi, false, false};
+}
 
 struct Property {
     std::string_view name;  // "" is a triangle's leading vertices
@@ -86,7 +89,7 @@ public:
     bool has(std::string_view name) const { return slot(name) && slot(name)->item; }
     // Validated values of a present, valid property (empty otherwise).
     const std::vector<Value>& values(std::string_view name) const;
-    const Value* value(std::string_view name) const;  // the first value, or null
+    const Value* value(std::string_view name) const;             // the first value, or null
     Span value_span(std::string_view name, size_t i = 0) const;  // the value expression's span
     Span name_span(std::string_view name) const;
 
@@ -99,7 +102,7 @@ public:
     // Reports "missing property" at the keyword unless present (or present but failed).
     bool require(std::string_view name);
     void fail(Span span, std::string message);  // report an error and mark the block failed
-    void failed() { ok_ = false; }                // a problem already reported elsewhere
+    void failed() { ok_ = false; }              // a problem already reported elsewhere
     const std::vector<Transform>& transforms() const { return transforms_; }
     Span keyword() const { return keyword_; }
     const BlockTable& table() const { return table_; }

@@ -82,7 +82,9 @@ LoweredScene SceneBuilder::finish() {
 
 namespace {
 
-bool mentions_face(const std::string& message) { return message.find("face") != std::string::npos; }
+bool mentions_face(const std::string& message) {
+    return message.find("face") != std::string::npos;
+}
 
 // Where to report a SpecError, and its message with the face and OBJ line when it concerns one.
 std::pair<Span, std::string> locate(const render::SpecError& e, const SpanRecord& rec,
@@ -98,7 +100,8 @@ std::pair<Span, std::string> locate(const render::SpecError& e, const SpanRecord
         return {packed_element_span(probe, 0, sources), prefix + message};
     }
     if (rec.faces && face < rec.faces->spans.size()) return {rec.faces->spans[face], prefix + message};
-    if (!prefix.empty() && rec.obj && e.item == render::SpecItem::Shape && e.index < scene.spec.shapes.size()) {
+    if (!prefix.empty() && rec.obj && e.item == render::SpecItem::Shape &&
+        e.index < scene.spec.shapes.size()) {
         const auto& mesh = scene.spec.shapes[e.index].mesh;
         if (mesh && face < mesh->face_lines.size())
             prefix = "face " + std::to_string(face) + " (" + mesh->source_name + " line " +

@@ -17,7 +17,7 @@ struct Span {
 };
 
 struct SourceFile {
-    std::string path;     // as given (used in messages)
+    std::string path;  // as given (used in messages)
     std::string text;
     std::vector<uint32_t> line_starts;  // byte offset of each line's start (LF, CRLF, CR end lines)
 };

@@ -14,19 +14,58 @@ enum class TokenKind : uint8_t {
     String,
     Ident,
     // Reserved keywords.
-    Let, For, In, If, Else, Include, Settings, Camera, Light,
-    Sphere, Box, Triangle, Plane, Mesh, Material, Image, Checker, Perlin, True, False,
+    Let,
+    For,
+    In,
+    If,
+    Else,
+    Include,
+    Settings,
+    Camera,
+    Light,
+    Sphere,
+    Box,
+    Triangle,
+    Plane,
+    Mesh,
+    Material,
+    Image,
+    Checker,
+    Perlin,
+    True,
+    False,
     // Punctuation.
-    LBrace, RBrace, LParen, RParen, LBracket, RBracket, Less, Greater, Comma, Assign,
-    Dot, DotDot, Plus, Minus, Star, Slash, Percent, EqEq, NotEq, LessEq, GreaterEq,
-    AndAnd, OrOr, Bang,
+    LBrace,
+    RBrace,
+    LParen,
+    RParen,
+    LBracket,
+    RBracket,
+    Less,
+    Greater,
+    Comma,
+    Assign,
+    Dot,
+    DotDot,
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    Percent,
+    EqEq,
+    NotEq,
+    LessEq,
+    GreaterEq,
+    AndAnd,
+    OrOr,
+    Bang,
 };
 
 struct Token {
     TokenKind kind = TokenKind::Eof;
     uint32_t begin = 0;  // byte offsets in the file
     uint32_t end = 0;
-    double number = 0;   // Number: the value (0 after a reported error)
+    double number = 0;  // Number: the value (0 after a reported error)
 };
 
 // The keyword for an identifier spelling, or Ident.

@@ -10,14 +10,22 @@ namespace wsd::lang {
 
 const char* type_name(ValueType type) {
     switch (type) {
-    case ValueType::Number: return "number";
-    case ValueType::Bool: return "bool";
-    case ValueType::String: return "string";
-    case ValueType::Vector2: return "vector2";
-    case ValueType::Vector3: return "vector3";
-    case ValueType::List: return "list";
-    case ValueType::Material: return "material";
-    case ValueType::Texture: return "texture";
+        case ValueType::Number:
+            return "number";
+        case ValueType::Bool:
+            return "bool";
+        case ValueType::String:
+            return "string";
+        case ValueType::Vector2:
+            return "vector2";
+        case ValueType::Vector3:
+            return "vector3";
+        case ValueType::List:
+            return "list";
+        case ValueType::Material:
+            return "material";
+        case ValueType::Texture:
+            return "texture";
     }
     return "value";
 }
@@ -59,28 +67,45 @@ std::string format_number(double x) {
 
 std::string describe(const Value& v) {
     switch (v.type()) {
-    case ValueType::Number: return format_number(v.number());
-    case ValueType::Bool: return v.boolean() ? "true" : "false";
-    case ValueType::String: return std::string(1, '"').append(v.string()).append(1, '"');
-    case ValueType::Vector2:
-        return std::string(1, '<').append(format_number(v.vec2().x)).append(", ").append(format_number(v.vec2().y)).append(">");
-    case ValueType::Vector3:
-        return std::string(1, '<')
-            .append(format_number(v.vec3().x)).append(", ")
-            .append(format_number(v.vec3().y)).append(", ")
-            .append(format_number(v.vec3().z)).append(">");
-    default: return std::string("a ") + type_name(v.type());
+        case ValueType::Number:
+            return format_number(v.number());
+        case ValueType::Bool:
+            return v.boolean() ? "true" : "false";
+        case ValueType::String:
+            return std::string(1, '"').append(v.string()).append(1, '"');
+        case ValueType::Vector2:
+            return std::string(1, '<')
+                .append(format_number(v.vec2().x))
+                .append(", ")
+                .append(format_number(v.vec2().y))
+                .append(">");
+        case ValueType::Vector3:
+            return std::string(1, '<')
+                .append(format_number(v.vec3().x))
+                .append(", ")
+                .append(format_number(v.vec3().y))
+                .append(", ")
+                .append(format_number(v.vec3().z))
+                .append(">");
+        default:
+            return std::string("a ") + type_name(v.type());
     }
 }
 
 bool values_equal(const Value& a, const Value& b) {
     switch (a.type()) {
-    case ValueType::Number: return a.number() == b.number();
-    case ValueType::Bool: return a.boolean() == b.boolean();
-    case ValueType::String: return a.string() == b.string();
-    case ValueType::Vector2: return a.vec2() == b.vec2();
-    case ValueType::Vector3: return a.vec3() == b.vec3();
-    default: return false;
+        case ValueType::Number:
+            return a.number() == b.number();
+        case ValueType::Bool:
+            return a.boolean() == b.boolean();
+        case ValueType::String:
+            return a.string() == b.string();
+        case ValueType::Vector2:
+            return a.vec2() == b.vec2();
+        case ValueType::Vector3:
+            return a.vec3() == b.vec3();
+        default:
+            return false;
     }
 }
 

@@ -4,12 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <variant>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lang/ast.h"
 #include "lang/source.h"
@@ -66,8 +65,8 @@ public:
     const TexturePtr& texture() const { return std::get<TexturePtr>(payload_); }
 
 private:
-    using Payload = std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr,
-                                 MaterialPtr, TexturePtr>;
+    using Payload =
+        std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr, MaterialPtr, TexturePtr>;
     template <class T>
     Value(T&& x, Span span) : payload_(std::forward<T>(x)), span_(span) {}
     Payload payload_{0.0};
@@ -75,8 +74,8 @@ private:
 };
 
 struct ListValue {
-    std::vector<Value> items;                      // used unless `packed` is set
-    std::shared_ptr<const PackedVectors> packed;   // shared with the AST, never copied
+    std::vector<Value> items;                     // used unless `packed` is set
+    std::shared_ptr<const PackedVectors> packed;  // shared with the AST, never copied
 
     size_t size() const { return packed ? packed->size() : items.size(); }
     // Element i; a packed element becomes a vector value spanning its literal.
@@ -97,7 +96,7 @@ struct TextureValue {
 struct MaterialValue {
     render::MaterialSpec spec;  // spec.texture / spec.bump mirror `texture` / `bump`
     TexturePtr texture, bump;
-    Span span;                  // the `material {` that made it
+    Span span;  // the `material {` that made it
     IncludeChain chain;
 };
 

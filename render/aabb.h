@@ -135,8 +135,8 @@ struct RayBoxTest {
 // RayBoxTest::init's o_near, o_far and inv for four rays at once (lane k: ray k), bit for bit,
 // without a branch (the rounding of o goes either way about half the time). Every ray's
 // direction must have the sign `neg[a]` on axis a (signbit), as in a packet.
-inline void slab_constants4(const Vec3 (&o)[4], const Vec3 (&d)[4], const bool (&neg)[3],
-                            __m128* o_near, __m128* o_far, __m128* inv) {
+inline void slab_constants4(const Vec3 (&o)[4], const Vec3 (&d)[4], const bool (&neg)[3], __m128* o_near,
+                            __m128* o_far, __m128* inv) {
     const __m128i one = _mm_set1_epi32(1), ones = _mm_set1_epi32(-1);
     for (int a = 0; a < 3; ++a) {
         const __m128d o01 = _mm_set_pd(o[1][a], o[0][a]), o23 = _mm_set_pd(o[3][a], o[2][a]);
@@ -154,7 +154,8 @@ inline void slab_constants4(const Vec3 (&o)[4], const Vec3 (&d)[4], const bool (
         const __m128i sign = _mm_srai_epi32(bits, 31);
         const __m128i step_up = _mm_or_si128(sign, one);
         const __m128i step_down = _mm_or_si128(_mm_xor_si128(sign, ones), one);
-        const __m128 up = _mm_castsi128_ps(_mm_add_epi32(bits, _mm_and_si128(step_up, _mm_castps_si128(below))));
+        const __m128 up =
+            _mm_castsi128_ps(_mm_add_epi32(bits, _mm_and_si128(step_up, _mm_castps_si128(below))));
         const __m128 down =
             _mm_castsi128_ps(_mm_add_epi32(bits, _mm_and_si128(step_down, _mm_castps_si128(above))));
         o_near[a] = neg[a] ? down : up;

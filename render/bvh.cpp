@@ -52,11 +52,21 @@ struct F4 {
     static F4 zip(F4 a, F4 b, Op op) {
         return {{op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
     }
-    friend F4 min(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x < y ? x : y; }); }
-    friend F4 max(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x > y ? x : y; }); }
-    friend F4 operator+(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x + y; }); }
-    friend F4 operator-(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x - y; }); }
-    friend F4 operator*(F4 a, F4 b) { return zip(a, b, [](float x, float y) { return x * y; }); }
+    friend F4 min(F4 a, F4 b) {
+        return zip(a, b, [](float x, float y) { return x < y ? x : y; });
+    }
+    friend F4 max(F4 a, F4 b) {
+        return zip(a, b, [](float x, float y) { return x > y ? x : y; });
+    }
+    friend F4 operator+(F4 a, F4 b) {
+        return zip(a, b, [](float x, float y) { return x + y; });
+    }
+    friend F4 operator-(F4 a, F4 b) {
+        return zip(a, b, [](float x, float y) { return x - y; });
+    }
+    friend F4 operator*(F4 a, F4 b) {
+        return zip(a, b, [](float x, float y) { return x * y; });
+    }
     void truncate_to(int* k) const {
         for (int a = 0; a < 3; ++a) k[a] = static_cast<int>(v[a]);
     }
@@ -217,8 +227,8 @@ Split find_split(const Shared& s, const Range& r, Binning& binning) {
             nl += bins[a][k].count;
             uint32_t nrk = right_count[k + 1];
             if (nl == 0 || nrk == 0) continue;
-            float cost = left.half_area() * static_cast<float>(nl) +
-                         right_area[k + 1] * static_cast<float>(nrk);
+            float cost =
+                left.half_area() * static_cast<float>(nl) + right_area[k + 1] * static_cast<float>(nrk);
             if (best.axis < 0 || cost < best.cost) {
                 best.axis = a;
                 best.bin = k;
@@ -409,7 +419,8 @@ int children4(const std::vector<BvhNode>& nodes, uint32_t n, uint32_t* kids) {
     while (count < 4) {
         int open = -1;
         for (int i = 0; i < count; ++i)
-            if (nodes[kids[i]].count == 0 && (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
+            if (nodes[kids[i]].count == 0 &&
+                (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
                 open = i;
         if (open < 0) break;
         uint32_t inner = kids[open];

@@ -14,11 +14,11 @@
 namespace wsd::render {
 
 struct BvhOptions {
-    int max_leaf = 4;         // primitives per leaf at most
-    int bins = 16;            // SAH bins per axis
+    int max_leaf = 4;  // primitives per leaf at most
+    int bins = 16;     // SAH bins per axis
     float traversal_cost = 1.0f;
     float intersect_cost = 1.0f;
-    int threads = 1;          // 0 = all cores
+    int threads = 1;  // 0 = all cores
 };
 
 struct Bvh {

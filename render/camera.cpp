@@ -8,12 +8,13 @@ namespace wsd::render {
 
 namespace {
 
-bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
-std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int height,
-                                     std::string& error) {
+std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int height, std::string& error) {
     if (!finite3(spec.position) || !finite3(spec.look_at) || !finite3(spec.up)) {
         error = "camera position, look_at and up must be finite";
         return std::nullopt;

@@ -15,8 +15,7 @@ class Camera {
 public:
     // nullopt + error for a camera that has no frame: position = look_at, up parallel to the view
     // direction or zero, fov outside (0, 180), a non-finite value, or a non-positive image size.
-    static std::optional<Camera> create(const CameraSpec& spec, int width, int height,
-                                        std::string& error);
+    static std::optional<Camera> create(const CameraSpec& spec, int width, int height, std::string& error);
 
     // The ray through image position (px, py) in pixels (pixel centres at half-integers).
     Ray ray(double px, double py) const {

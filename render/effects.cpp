@@ -5,19 +5,32 @@ namespace wsd::render {
 
 const char* effect_name(Effect e) {
     switch (e) {
-    case Effect::PointShadows: return "point-light shadows";
-    case Effect::AreaShadows: return "area-light soft shadows";
-    case Effect::Reflection: return "reflection";
-    case Effect::Refraction: return "refraction";
-    case Effect::Absorption: return "absorption";
-    case Effect::ImageTextures: return "image textures";
-    case Effect::ProceduralTextures: return "procedural textures";
-    case Effect::Bumps: return "bumps";
-    case Effect::SmoothNormals: return "smooth normals";
-    case Effect::Specular: return "specular highlights";
-    case Effect::Supersampling: return "supersampling";
-    case Effect::AdaptiveSupersampling: return "adaptive supersampling";
-    case Effect::AdaptiveLights: return "adaptive area lights";
+        case Effect::PointShadows:
+            return "point-light shadows";
+        case Effect::AreaShadows:
+            return "area-light soft shadows";
+        case Effect::Reflection:
+            return "reflection";
+        case Effect::Refraction:
+            return "refraction";
+        case Effect::Absorption:
+            return "absorption";
+        case Effect::ImageTextures:
+            return "image textures";
+        case Effect::ProceduralTextures:
+            return "procedural textures";
+        case Effect::Bumps:
+            return "bumps";
+        case Effect::SmoothNormals:
+            return "smooth normals";
+        case Effect::Specular:
+            return "specular highlights";
+        case Effect::Supersampling:
+            return "supersampling";
+        case Effect::AdaptiveSupersampling:
+            return "adaptive supersampling";
+        case Effect::AdaptiveLights:
+            return "adaptive area lights";
     }
     return "?";
 }
@@ -50,8 +63,7 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
     };
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
         const ShapeSpec& sh = spec.shapes[i];
-        if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty())
-            use(Effect::SmoothNormals, i);
+        if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty()) use(Effect::SmoothNormals, i);
         if (sh.material >= spec.materials.size()) continue;
         const MaterialSpec& m = spec.materials[sh.material];
         if (m.reflection > 0) use(Effect::Reflection, i);
@@ -61,8 +73,8 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
         }
         if (m.specular > 0) use(Effect::Specular, i);
         if (m.texture) {
-            use(m.texture->kind == TextureKind::Image ? Effect::ImageTextures
-                                                      : Effect::ProceduralTextures, i);
+            use(m.texture->kind == TextureKind::Image ? Effect::ImageTextures : Effect::ProceduralTextures,
+                i);
         }
         if (m.bump && m.bump_strength > 0) use(Effect::Bumps, i);
     }

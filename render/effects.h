@@ -12,13 +12,13 @@
 namespace wsd::render {
 
 enum class Effect : uint8_t {
-    PointShadows,           // a point light (hard shadows)
-    AreaShadows,            // an area light (soft shadows)
-    Reflection,             // a material with reflection > 0
-    Refraction,             // a material with transmission > 0 (Fresnel, Snell, light shadows)
-    Absorption,             // a transmissive material with non-zero absorption
+    PointShadows,  // a point light (hard shadows)
+    AreaShadows,   // an area light (soft shadows)
+    Reflection,    // a material with reflection > 0
+    Refraction,    // a material with transmission > 0 (Fresnel, Snell, light shadows)
+    Absorption,    // a transmissive material with non-zero absorption
     ImageTextures,
-    ProceduralTextures,     // checker or Perlin colour textures
+    ProceduralTextures,  // checker or Perlin colour textures
     Bumps,
     SmoothNormals,          // a mesh with per-vertex normals
     Specular,               // a material with specular > 0

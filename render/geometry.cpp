@@ -193,18 +193,18 @@ std::optional<HitRecord> Geometry::intersect(const Ray& ray, double tmax, RaySta
     Counters c;
     RayPre r(ray);
     switch (filter) {
-    case RayFilter::All:
-        test_planes<0>(g, ray, best, c);
-        closest_hit<0>(g, r, best, c);
-        break;
-    case RayFilter::OpaqueOnly:
-        test_planes<1>(g, ray, best, c);
-        closest_hit<1>(g, r, best, c);
-        break;
-    case RayFilter::TransmissiveOnly:
-        test_planes<2>(g, ray, best, c);
-        closest_hit<2>(g, r, best, c);
-        break;
+        case RayFilter::All:
+            test_planes<0>(g, ray, best, c);
+            closest_hit<0>(g, r, best, c);
+            break;
+        case RayFilter::OpaqueOnly:
+            test_planes<1>(g, ray, best, c);
+            closest_hit<1>(g, r, best, c);
+            break;
+        case RayFilter::TransmissiveOnly:
+            test_planes<2>(g, ray, best, c);
+            closest_hit<2>(g, r, best, c);
+            break;
     }
     c.flush(stats);
     return best.record();
@@ -227,9 +227,15 @@ bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter 
     RayPre r(ray);
     bool hit = false;
     switch (filter) {
-    case RayFilter::All: hit = any_hit<0>(g, ray, r, tmax, c); break;
-    case RayFilter::OpaqueOnly: hit = any_hit<1>(g, ray, r, tmax, c); break;
-    case RayFilter::TransmissiveOnly: hit = any_hit<2>(g, ray, r, tmax, c); break;
+        case RayFilter::All:
+            hit = any_hit<0>(g, ray, r, tmax, c);
+            break;
+        case RayFilter::OpaqueOnly:
+            hit = any_hit<1>(g, ray, r, tmax, c);
+            break;
+        case RayFilter::TransmissiveOnly:
+            hit = any_hit<2>(g, ray, r, tmax, c);
+            break;
     }
     c.flush(stats);
     return hit;
@@ -250,9 +256,15 @@ Vec3 Geometry::offset_origin(const SurfaceHit& s, const Vec3& w) {
     return po;
 }
 
-size_t Geometry::primitive_count() const { return impl_->primitive_count; }
-size_t Geometry::triangle_count() const { return impl_->tris.size(); }
-bool Geometry::has_transmissive() const { return impl_->has_transmissive; }
+size_t Geometry::primitive_count() const {
+    return impl_->primitive_count;
+}
+size_t Geometry::triangle_count() const {
+    return impl_->tris.size();
+}
+bool Geometry::has_transmissive() const {
+    return impl_->has_transmissive;
+}
 
 size_t Geometry::memory_bytes() const {
     const Impl& g = *impl_;

@@ -97,8 +97,7 @@ public:
     // those in BVH leaves that meet it, less those a finer test clears (Shaft::outside_*,
     // clear_of_*); `self` is the surface the rays leave. False when there is no BVH or more than
     // ShaftCandidates::kMax of them: then use occluded() for each ray.
-    bool gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
-                      RayStats& stats) const;
+    bool gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out, RayStats& stats) const;
     // occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the shaft the
     // candidates were gathered for: the same answer, testing only those primitives (none when
     // the shaft is known to be blocked).
@@ -106,18 +105,19 @@ public:
                         RayStats& stats) const;
     // intersect(ray, tmax, stats, RayFilter::TransmissiveOnly) for a ray inside the shaft, when
     // candidates.transmissive_listed: the same hit, testing only the listed primitives.
-    std::optional<HitRecord> intersect_among(const ShaftCandidates& candidates, const Ray& ray,
-                                             double tmax, RayStats& stats) const;
+    std::optional<HitRecord> intersect_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
+                                             RayStats& stats) const;
 
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);
 
-    size_t primitive_count() const;   // triangles + spheres + boxes + planes
+    size_t primitive_count() const;  // triangles + spheres + boxes + planes
     size_t triangle_count() const;
     bool has_transmissive() const;
-    size_t memory_bytes() const;      // primitives and BVH
+    size_t memory_bytes() const;  // primitives and BVH
 
     struct Impl;
+
 private:
     explicit Geometry(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;

@@ -30,9 +30,7 @@ struct Builder {
         ++shape_errors;
     }
 
-    bool transmissive(uint32_t material) const {
-        return spec.materials[material].transmission > 0;
-    }
+    bool transmissive(uint32_t material) const { return spec.materials[material].transmission > 0; }
 
     void add_bounded(PrimKind kind, uint32_t slot, const Bounds3f& b, bool trans) {
         bounds.push_back(b);
@@ -111,7 +109,8 @@ void Builder::sphere(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bo
 }
 
 void Builder::box(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
-    if (!is_finite(s.box_min) || !is_finite(s.box_max)) return error("box corner has a non-finite coordinate");
+    if (!is_finite(s.box_min) || !is_finite(s.box_max))
+        return error("box corner has a non-finite coordinate");
     if (!(s.box_min.x < s.box_max.x && s.box_min.y < s.box_max.y && s.box_min.z < s.box_max.z))
         return error("box min must be below max on every axis (a flat box has no volume)");
     BoxPrim p{};
@@ -186,7 +185,8 @@ void Builder::triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, 
 void Builder::plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
     if (!is_finite(s.normal)) return error("plane normal has a non-finite coordinate");
     if (!std::isfinite(s.distance)) return error("plane distance is not finite");
-    if (!std::isfinite(s.uv_scale) || !(s.uv_scale > 0)) return error("plane uv_scale must be a positive number");
+    if (!std::isfinite(s.uv_scale) || !(s.uv_scale > 0))
+        return error("plane uv_scale must be a positive number");
     Vec3 n = safe_normalize(s.normal, Vec3(0));
     if (n == Vec3(0)) return error("plane normal must not be zero");
     PlanePrim p{};
@@ -213,8 +213,8 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
         return error("mesh has " + std::to_string(m.uvs.size()) + " uvs for " + std::to_string(nv) +
                      " vertices (need one per vertex)");
     if (!m.normals.empty() && m.normals.size() != nv)
-        return error("mesh has " + std::to_string(m.normals.size()) + " normals for " +
-                     std::to_string(nv) + " vertices (need one per vertex)");
+        return error("mesh has " + std::to_string(m.normals.size()) + " normals for " + std::to_string(nv) +
+                     " vertices (need one per vertex)");
     if (g.verts.size() + nv > kSlotMask) return error("mesh has too many vertices");
     for (size_t i = 0; i < m.uvs.size(); ++i)
         if (!std::isfinite(m.uvs[i].x) || !std::isfinite(m.uvs[i].y))
@@ -278,8 +278,8 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
 
 }  // namespace
 
-std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors,
-                                          bool use_bvh, int threads) {
+std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
+                                          int threads) {
     auto impl = std::make_unique<Impl>();
     Impl& g = *impl;
     g.use_bvh = use_bvh;
@@ -326,16 +326,25 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
         info.mirrored = x.det < 0;
         bool trans = b.transmissive(s.material);
         switch (s.kind) {
-        case ShapeKind::Sphere: b.sphere(s, x, info, trans); break;
-        case ShapeKind::Box: b.box(s, x, info, trans); break;
-        case ShapeKind::Triangle: b.triangle(s, x, info, trans); break;
-        case ShapeKind::Plane: b.plane(s, x, info, trans); break;
-        case ShapeKind::Mesh: b.mesh(s, x, info, trans); break;
+            case ShapeKind::Sphere:
+                b.sphere(s, x, info, trans);
+                break;
+            case ShapeKind::Box:
+                b.box(s, x, info, trans);
+                break;
+            case ShapeKind::Triangle:
+                b.triangle(s, x, info, trans);
+                break;
+            case ShapeKind::Plane:
+                b.plane(s, x, info, trans);
+                break;
+            case ShapeKind::Mesh:
+                b.mesh(s, x, info, trans);
+                break;
         }
         if (b.shape_errors > 0) continue;
         if (b.next_prim > kMaxPrimitives && !limit_reported) {
-            b.error("the scene has more than 2^24 primitives (" + std::to_string(b.next_prim) +
-                    " so far)");
+            b.error("the scene has more than 2^24 primitives (" + std::to_string(b.next_prim) + " so far)");
             limit_reported = true;
         }
         if (trans) g.has_transmissive = true;
@@ -365,9 +374,18 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
             auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
             uint32_t ns = 0;
             switch (kind) {
-            case PrimKind::Triangle: ns = static_cast<uint32_t>(tris.size()); tris.push_back(g.tris[slot]); break;
-            case PrimKind::Sphere: ns = static_cast<uint32_t>(spheres.size()); spheres.push_back(g.spheres[slot]); break;
-            case PrimKind::Box: ns = static_cast<uint32_t>(boxes.size()); boxes.push_back(g.boxes[slot]); break;
+                case PrimKind::Triangle:
+                    ns = static_cast<uint32_t>(tris.size());
+                    tris.push_back(g.tris[slot]);
+                    break;
+                case PrimKind::Sphere:
+                    ns = static_cast<uint32_t>(spheres.size());
+                    spheres.push_back(g.spheres[slot]);
+                    break;
+                case PrimKind::Box:
+                    ns = static_cast<uint32_t>(boxes.size());
+                    boxes.push_back(g.boxes[slot]);
+                    break;
             }
             g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
         }

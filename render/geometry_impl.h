@@ -26,11 +26,11 @@ inline uint32_t encode_entry(PrimKind kind, uint32_t slot, bool transmissive) {
 struct ShapeInfo {
     ShapeKind kind = ShapeKind::Sphere;
     uint32_t material = 0;
-    uint32_t xform = 0;          // index into Impl::xforms (0 is the identity)
-    uint32_t first_prim = 0;     // canonical id of its first primitive
-    uint32_t extra = 0;          // triangle: index into tri_extra; plane: into plane_extra
-    uint32_t vertex_offset = 0;  // triangle, mesh: first vertex in Impl::verts
-    bool mirrored = false;       // det < 0: world winding is the reverse of the object's
+    uint32_t xform = 0;                    // index into Impl::xforms (0 is the identity)
+    uint32_t first_prim = 0;               // canonical id of its first primitive
+    uint32_t extra = 0;                    // triangle: index into tri_extra; plane: into plane_extra
+    uint32_t vertex_offset = 0;            // triangle, mesh: first vertex in Impl::verts
+    bool mirrored = false;                 // det < 0: world winding is the reverse of the object's
     std::shared_ptr<const MeshData> mesh;  // kept only when it has normals or uvs
 };
 
@@ -55,8 +55,8 @@ struct Geometry::Impl {
     std::vector<uint32_t> shape_first;  // shapes[i].first_prim, for lookups by canonical id
     std::vector<TriExtra> tri_extra;
     std::vector<PlaneExtra> plane_extra;
-    std::vector<Bvh4Node> nodes;   // the BVH in its 4-wide traversal form; empty without BVH
-    std::vector<uint32_t> order;   // encoded entries; leaf ranges (BVH) or canonical order
+    std::vector<Bvh4Node> nodes;  // the BVH in its 4-wide traversal form; empty without BVH
+    std::vector<uint32_t> order;  // encoded entries; leaf ranges (BVH) or canonical order
     bool use_bvh = true;
     bool has_transmissive = false;
     size_t primitive_count = 0;

@@ -225,7 +225,8 @@ bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet<Q>& p) {
         slab_constants4(o[q], d[q], neg, p.o_near[q], p.o_far[q], p.inv[q]);
         for (int a = 0; a < 3; ++a) {
             const __m128 mag = _mm_andnot_ps(sign_bit, p.inv[q][a]);
-            if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) != 15)
+            if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) !=
+                15)
                 return false;
             const bool first = q == 0;
             on_lo[a] = first ? p.o_near[q][a] : _mm_min_ps(on_lo[a], p.o_near[q][a]);

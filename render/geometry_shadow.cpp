@@ -50,15 +50,16 @@ int self_side(const Vec3& n, const ShaftSelf& self) {
 bool outside_shaft(const Geometry::Impl& g, const Shaft& shaft, uint32_t e) {
     const uint32_t slot = e & kSlotMask;
     switch ((e >> kKindShift) & 3u) {
-    case 0: {
-        const TriPrim& t = g.tris[slot];
-        return shaft.outside_triangle(g.verts[t.v[0]], g.verts[t.v[1]], g.verts[t.v[2]]);
-    }
-    case 1: {
-        const SpherePrim& sp = g.spheres[slot];
-        return sp.xform == kNoTransform && shaft.outside_ball(sp.center, sp.radius);
-    }
-    default: return false;
+        case 0: {
+            const TriPrim& t = g.tris[slot];
+            return shaft.outside_triangle(g.verts[t.v[0]], g.verts[t.v[1]], g.verts[t.v[2]]);
+        }
+        case 1: {
+            const SpherePrim& sp = g.spheres[slot];
+            return sp.xform == kNoTransform && shaft.outside_ball(sp.center, sp.radius);
+        }
+        default:
+            return false;
     }
 }
 
@@ -194,9 +195,8 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     return hit;
 }
 
-std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candidates,
-                                                   const Ray& ray, double tmax,
-                                                   RayStats& stats) const {
+std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candidates, const Ray& ray,
+                                                   double tmax, RayStats& stats) const {
     if (!ray_is_valid(ray, tmax)) {
         ++stats.rejected_rays;
         return std::nullopt;
@@ -221,7 +221,8 @@ std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candid
             if (intersect_plane(ray.o, ray.d, p, best.limit, t)) best.offer(t, p.prim, e & kSlotMask, 0, 0);
             continue;
         }
-        if (test_entry(g, pre.get(), e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
+        if (test_entry(g, pre.get(), e, best.limit, c, t, prim, b1, b2))
+            best.offer(t, prim, e & kSlotMask, b1, b2);
     }
     c.flush(stats);
     return best.record();

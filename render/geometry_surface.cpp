@@ -33,8 +33,7 @@ void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit
     const MeshData& m = *info.mesh;
     const uint32_t i0 = tri.v[0] - info.vertex_offset, i1 = tri.v[1] - info.vertex_offset,
                    i2 = tri.v[2] - info.vertex_offset;
-    if (!m.uvs.empty())
-        s.uv = b0 * Vec2(m.uvs[i0]) + b1 * Vec2(m.uvs[i1]) + b2 * Vec2(m.uvs[i2]);
+    if (!m.uvs.empty()) s.uv = b0 * Vec2(m.uvs[i0]) + b1 * Vec2(m.uvs[i1]) + b2 * Vec2(m.uvs[i2]);
     if (!m.normals.empty()) {
         Vec3 n = b0 * Vec3(m.normals[i0]) + b1 * Vec3(m.normals[i1]) + b2 * Vec3(m.normals[i2]);
         Vec3 ns = safe_normalize(x.identity ? n : x.normal(n), s.ng);
@@ -122,11 +121,19 @@ SurfaceHit Geometry::surface(const Ray& ray, const HitRecord& hit) const {
     s.prim = hit.prim;
     s.material = info.material;
     switch (info.kind) {
-    case ShapeKind::Triangle:
-    case ShapeKind::Mesh: triangle_surface(g, info, hit, s); break;
-    case ShapeKind::Sphere: sphere_surface(g, info, ray, hit, s); break;
-    case ShapeKind::Box: box_surface(g, ray, hit, s); break;
-    case ShapeKind::Plane: plane_surface(g, info, ray, hit, s); break;
+        case ShapeKind::Triangle:
+        case ShapeKind::Mesh:
+            triangle_surface(g, info, hit, s);
+            break;
+        case ShapeKind::Sphere:
+            sphere_surface(g, info, ray, hit, s);
+            break;
+        case ShapeKind::Box:
+            box_surface(g, ray, hit, s);
+            break;
+        case ShapeKind::Plane:
+            plane_surface(g, info, ray, hit, s);
+            break;
     }
     return s;
 }

@@ -3,6 +3,10 @@
 // interrupted write never leaves a partial image. The stb implementations live in stb_impl.cpp.
 #include "render/image_io.h"
 
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
@@ -17,11 +21,6 @@
 #include <memory>
 #include <vector>
 
-#include <unistd.h>
-
-#include <stb_image.h>
-#include <stb_image_write.h>
-
 namespace wsd::render {
 
 namespace {
@@ -34,7 +33,9 @@ std::string lower(std::string s) {
     return s;
 }
 
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
+std::string quoted(const std::string& path) {
+    return "'" + path + "'";
+}
 
 uint8_t to_byte(float v) {
     const double x = v > 0 ? std::min(double(v), 1.0) : 0.0;  // NaN → 0
@@ -55,7 +56,8 @@ void sink_write(void* context, void* data, int size) {
 
 bool encode(ImageFormat format, const Film& film, Sink& sink) {
     const int w = film.width, h = film.height;
-    if (format == ImageFormat::Hdr) return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, film.rgb.data()) != 0;
+    if (format == ImageFormat::Hdr)
+        return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, film.rgb.data()) != 0;
     if (format == ImageFormat::Pfm) {
         const std::string header = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
         sink_write(&sink, const_cast<char*>(header.data()), int(header.size()));
@@ -74,11 +76,16 @@ bool encode(ImageFormat format, const Film& film, Sink& sink) {
     std::vector<unsigned char> bytes(film.rgb.size());
     for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = to_byte(film.rgb[i]);
     switch (format) {
-    case ImageFormat::Png: return stbi_write_png_to_func(sink_write, &sink, w, h, 3, bytes.data(), w * 3) != 0;
-    case ImageFormat::Jpeg: return stbi_write_jpg_to_func(sink_write, &sink, w, h, 3, bytes.data(), 95) != 0;
-    case ImageFormat::Bmp: return stbi_write_bmp_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
-    case ImageFormat::Tga: return stbi_write_tga_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
-    default: return false;
+        case ImageFormat::Png:
+            return stbi_write_png_to_func(sink_write, &sink, w, h, 3, bytes.data(), w * 3) != 0;
+        case ImageFormat::Jpeg:
+            return stbi_write_jpg_to_func(sink_write, &sink, w, h, 3, bytes.data(), 95) != 0;
+        case ImageFormat::Bmp:
+            return stbi_write_bmp_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
+        case ImageFormat::Tga:
+            return stbi_write_tga_to_func(sink_write, &sink, w, h, 3, bytes.data()) != 0;
+        default:
+            return false;
     }
 }
 
@@ -135,7 +142,8 @@ bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, F
     auto r3 = std::from_chars(p, end, scale);
     if (r3.ec != std::errc() || !std::isfinite(scale) || scale == 0) return bad("bad scale");
     p = r3.ptr;
-    if (p >= end || !std::isspace(static_cast<unsigned char>(*p))) return bad("no whitespace after the header");
+    if (p >= end || !std::isspace(static_cast<unsigned char>(*p)))
+        return bad("no whitespace after the header");
     ++p;
     if (w < 1 || h < 1 || w > 100000 || h > 100000 || w * h > kMaxPixels) return bad("bad image size");
     const size_t values = size_t(w) * size_t(h) * size_t(channels);
@@ -149,11 +157,13 @@ bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, F
         const long out_row = h - 1 - y;  // stored bottom row first
         for (long x = 0; x < w; ++x) {
             for (int c = 0; c < 3; ++c) {
-                const size_t src = (size_t(y) * size_t(w) + size_t(x)) * size_t(channels) + size_t(c % channels);
+                const size_t src =
+                    (size_t(y) * size_t(w) + size_t(x)) * size_t(channels) + size_t(c % channels);
                 uint32_t bits;
                 std::memcpy(&bits, p + src * 4, 4);
                 if (swap) bits = __builtin_bswap32(bits);
-                film.rgb[(size_t(out_row) * size_t(w) + size_t(x)) * 3 + size_t(c)] = std::bit_cast<float>(bits);
+                film.rgb[(size_t(out_row) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
+                    std::bit_cast<float>(bits);
             }
         }
     }
@@ -190,7 +200,8 @@ bool write_image(const std::string& path, const Film& film, std::string& error) 
                 ": unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)";
         return false;
     }
-    if (film.width < 1 || film.height < 1 || film.rgb.size() != size_t(film.width) * size_t(film.height) * 3) {
+    if (film.width < 1 || film.height < 1 ||
+        film.rgb.size() != size_t(film.width) * size_t(film.height) * 3) {
         error = "cannot write " + quoted(path) + ": the image is empty";
         return false;
     }

@@ -1,6 +1,7 @@
 // Image files for textures: decoding through stb_image (8-bit sRGB → linear through the exact
 // curve, 16-bit PNG through the same curve, HDR already linear), the per-scene cache that loads
 // each path once, and the bilinear lookup with wrap/clamp addressing (robustness.md T14, R49).
+#include <stb_image.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -11,8 +12,6 @@
 #include <cstring>
 #include <memory>
 #include <new>
-
-#include <stb_image.h>
 
 #include "render/texture.h"
 
@@ -27,7 +26,8 @@ double srgb_curve(double c) {
 const std::array<float, 256>& srgb8_table() {
     static const std::array<float, 256> table = [] {
         std::array<float, 256> t{};
-        for (size_t i = 0; i < 256; ++i) t[i] = static_cast<float>(srgb_curve(static_cast<double>(i) / 255.0));
+        for (size_t i = 0; i < 256; ++i)
+            t[i] = static_cast<float>(srgb_curve(static_cast<double>(i) / 255.0));
         return t;
     }();
     return table;
@@ -104,7 +104,9 @@ inline size_t address(long long i, long long n, bool wrap) {
 
 }  // namespace
 
-float srgb8_to_linear(uint8_t v) { return srgb8_table()[v]; }
+float srgb8_to_linear(uint8_t v) {
+    return srgb8_table()[v];
+}
 
 std::shared_ptr<const Image> load_image(const std::string& path, std::string& error) {
     const std::string label = "'" + path + "'";

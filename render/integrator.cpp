@@ -49,7 +49,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // reached by pathological stacks of glass; it bounds the loop, it is not a tolerance).
 constexpr int kMaxShadowCrossings = 1024;
 
-double max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+double max_component(const Vec3& v) {
+    return std::max(v.x, std::max(v.y, v.z));
+}
 
 // Beer–Lambert transmittance along `distance` world units inside material m.
 Color absorb(const Material& m, double distance) {
@@ -61,8 +63,7 @@ Color absorb(const Material& m, double distance) {
 // (exp(−0·∞) would be NaN).
 Color absorb_forever(const Material& m) {
     if (!m.absorbs) return Color(1);
-    return {m.absorption.x > 0 ? 0.0 : 1.0, m.absorption.y > 0 ? 0.0 : 1.0,
-            m.absorption.z > 0 ? 0.0 : 1.0};
+    return {m.absorption.x > 0 ? 0.0 : 1.0, m.absorption.y > 0 ? 0.0 : 1.0, m.absorption.z > 0 ? 0.0 : 1.0};
 }
 
 struct Path {
@@ -79,9 +80,14 @@ class WhittedTracer final : public Tracer {
 
 public:
     WhittedTracer(const Scene& scene, const TracerOptions& options, RayStats& stats)
-        : scene_(scene), geom_(scene.geometry()), materials_(scene.materials()),
-          lights_(scene.lights()), stats_(stats), force_adaptive_(options.adaptive_lights),
-          max_depth_(scene.settings().max_depth), bailout_(scene.settings().bailout),
+        : scene_(scene),
+          geom_(scene.geometry()),
+          materials_(scene.materials()),
+          lights_(scene.lights()),
+          stats_(stats),
+          force_adaptive_(options.adaptive_lights),
+          max_depth_(scene.settings().max_depth),
+          bailout_(scene.settings().bailout),
           background_(scene.settings().background) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
@@ -97,8 +103,7 @@ public:
         return trace(scene_.camera().ray(px, py), Path{key, 0, Vec3(1), -1});
     }
 
-    void camera_samples(const double* px, const double* py, const uint64_t* key, int n,
-                        Color* out) override {
+    void camera_samples(const double* px, const double* py, const uint64_t* key, int n, Color* out) override {
         Ray rays[Geometry::kMaxPacket];
         std::optional<HitRecord> hits[Geometry::kMaxPacket];
         for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
@@ -131,8 +136,7 @@ private:
         if constexpr (kTransmissive) {
             // A ray with no known medium that reaches the inside of a transmissive surface was
             // travelling inside that (closed) object, e.g. a camera placed inside glass.
-            if (medium < 0 && m.transmission > 0 && glm::dot(ray.d, s.ng) > 0)
-                medium = int(s.material);
+            if (medium < 0 && m.transmission > 0 && glm::dot(ray.d, s.ng) > 0) medium = int(s.material);
         }
         Color c = shade(ray, s, m, path, medium);
         if constexpr (kTransmissive) {
@@ -141,14 +145,14 @@ private:
         return c;
     }
 
-    Color shade(const Ray& ray, const SurfaceHit& s, const Material& m, const Path& path,
-                int medium) {
+    Color shade(const Ray& ray, const SurfaceHit& s, const Material& m, const Path& path, int medium) {
         const Vec3 V = -ray.d;
         // Inside/outside and every validity check use the geometric normal.
         const bool front = glm::dot(ray.d, s.ng) < 0;
         const Vec3 ng_v = front ? s.ng : -s.ng;
         Vec3 ns = s.ns;
-        if (m.bump) ns = bump_normal(*m.bump, m.bump_strength, s, ns, scene_.object_to_world(s.shape), stats_);
+        if (m.bump)
+            ns = bump_normal(*m.bump, m.bump_strength, s, ns, scene_.object_to_world(s.shape), stats_);
         // The shading normal, turned to the viewer's side of the surface.
         const Vec3 N = glm::dot(ns, ng_v) < 0 ? -ns : ns;
         const Color c = m.texture ? m.texture->eval(s, stats_) : m.color;
@@ -210,8 +214,8 @@ private:
     }
 
     // Σ_lights (1/n) Σ_s visible_s·light·[(1 − t)·c·diffuse·max(0, N·L_s) + specular·max(0, R_s·V)^p]
-    Color direct(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V,
-                 const Color& c, double t, uint64_t key) {
+    Color direct(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V, const Color& c,
+                 double t, uint64_t key) {
         const double kd = (1.0 - t) * m.diffuse;
         if (lights_.empty() || (!(kd > 0) && !(m.specular > 0))) return Color(0);
         Shading sh;
@@ -263,7 +267,8 @@ private:
     void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
         const int n = cells_.prepare(sh, light, lkey);
         auto term = [&](int k) { return cells_.term(sh, k); };
-        if (use_shaft_ && (shaft_.blocked || (shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)))) {
+        if (use_shaft_ &&
+            (shaft_.blocked || (shaft_.count == 0 && !(kTransmissive && shaft_.transmissive)))) {
             // The shaft knows every ray's answer: 0 (the sums stay as they are) or 1.
             const bool lit = !shaft_.blocked;
             uint64_t rays = 0;
@@ -309,8 +314,8 @@ private:
             return vis_[cell];
         };
         const Vis a = probe(0, 0);
-        const bool agree = probe(nu - 1, 0) == a && probe(0, nv - 1) == a &&
-                           probe(nu - 1, nv - 1) == a && probe(nu / 2, nv / 2) == a;
+        const bool agree = probe(nu - 1, 0) == a && probe(0, nv - 1) == a && probe(nu - 1, nv - 1) == a &&
+                           probe(nu / 2, nv / 2) == a;
         if (agree)
             fill(nu, 0, 0, nu - 1, nv - 1, a);
         else
@@ -462,8 +467,7 @@ private:
 
 std::unique_ptr<Tracer> make_tracer(const Scene& scene, const TracerOptions& options, RayStats& stats) {
     if (!options.specialise) return std::make_unique<WhittedTracer<true, true>>(scene, options, stats);
-    const bool transmissive =
-        scene.geometry().has_transmissive() || scene.effects().has(Effect::Refraction);
+    const bool transmissive = scene.geometry().has_transmissive() || scene.effects().has(Effect::Refraction);
     const bool adaptive = scene.effects().has(Effect::AdaptiveLights) ||
                           (options.adaptive_lights && scene.has_multi_cell_area_light());
     if (transmissive && adaptive) return std::make_unique<WhittedTracer<true, true>>(scene, options, stats);

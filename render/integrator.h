@@ -15,7 +15,9 @@ namespace wsd::render {
 class Scene;
 
 // The mirror direction of d about the unit normal n.
-inline Vec3 reflect(const Vec3& d, const Vec3& n) { return d - (2.0 * glm::dot(d, n)) * n; }
+inline Vec3 reflect(const Vec3& d, const Vec3& n) {
+    return d - (2.0 * glm::dot(d, n)) * n;
+}
 
 struct FresnelResult {
     double reflectance = 1;  // unpolarised dielectric Fresnel F; 1 under total internal reflection

@@ -21,12 +21,12 @@ namespace wsd::render {
 // Per-hit constants of the light loop, hoisted out of the sample loop.
 struct Shading {
     Vec3 p, ng, N, V;
-    uint32_t prim;     // the primitive the point lies on
-    Vec3 ng_v;         // the geometric normal on the viewer's side
-    bool opaque;       // no transmission: light from behind the surface cannot reach the viewer's side
+    uint32_t prim;  // the primitive the point lies on
+    Vec3 ng_v;      // the geometric normal on the viewer's side
+    bool opaque;    // no transmission: light from behind the surface cannot reach the viewer's side
     double nv;
-    bool diffuse;      // (1 − t)·diffuse > 0
-    double specular;   // the material's specular weight
+    bool diffuse;     // (1 − t)·diffuse > 0
+    double specular;  // the material's specular weight
     double shininess;
     Vec3 o_front, o_back;  // spawn origins on the ng side and the opposite side
 };
@@ -175,9 +175,9 @@ private:
     // every cell's point and unshadowed terms: independent of each other, so they vectorise and
     // their square roots and divisions overlap. Then the shadow rays, summed in cell order.
 
-    std::vector<double> cell_s_, cell_t_;             // cell coordinates (s, t) in cell units
-    std::vector<double> cell_x_, cell_y_, cell_z_;    // the cells' points
-    std::vector<double> raw_nl_, raw_rv_, raw_ok_;    // their raw_term()s
+    std::vector<double> cell_s_, cell_t_;           // cell coordinates (s, t) in cell units
+    std::vector<double> cell_x_, cell_y_, cell_z_;  // the cells' points
+    std::vector<double> raw_nl_, raw_rv_, raw_ok_;  // their raw_term()s
 };
 
 }  // namespace wsd::render

@@ -7,9 +7,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <limits>
-
 #include <glm/glm.hpp>
+#include <limits>
 
 #include "render/scene_spec.h"
 
@@ -26,9 +25,13 @@ inline constexpr double kEpsD = 0x1p-53;
 inline constexpr double kEpsF = 0x1p-24;
 
 // pbrt's gamma: a chain of n roundings multiplies the exact value by at most (1 ± gamma(n)).
-constexpr double gamma(int n) { return n * kEpsD / (1 - n * kEpsD); }
+constexpr double gamma(int n) {
+    return n * kEpsD / (1 - n * kEpsD);
+}
 // The same bound for float arithmetic, evaluated in double.
-constexpr double gamma_f(int n) { return n * kEpsF / (1 - n * kEpsF); }
+constexpr double gamma_f(int n) {
+    return n * kEpsF / (1 - n * kEpsF);
+}
 
 inline double next_float_up(double v) {
     if (std::isinf(v) && v > 0) return v;
@@ -95,9 +98,15 @@ inline double difference_of_products(double a, double b, double c, double d) {
     return dop + err;
 }
 
-inline double safe_sqrt(double x) { return std::sqrt(x > 0 ? x : 0.0); }
-inline double safe_asin(double x) { return std::asin(x < -1 ? -1.0 : (x > 1 ? 1.0 : x)); }
-inline double safe_acos(double x) { return std::acos(x < -1 ? -1.0 : (x > 1 ? 1.0 : x)); }
+inline double safe_sqrt(double x) {
+    return std::sqrt(x > 0 ? x : 0.0);
+}
+inline double safe_asin(double x) {
+    return std::asin(x < -1 ? -1.0 : (x > 1 ? 1.0 : x));
+}
+inline double safe_acos(double x) {
+    return std::acos(x < -1 ? -1.0 : (x > 1 ? 1.0 : x));
+}
 
 // normalize(v), or `fallback` when v has no usable length (zero, denormal-small or non-finite).
 inline Vec3 safe_normalize(const Vec3& v, const Vec3& fallback) {
@@ -119,6 +128,8 @@ inline bool is_finite(const Vec3f& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-inline Vec3 abs3(const Vec3& v) { return {std::abs(v.x), std::abs(v.y), std::abs(v.z)}; }
+inline Vec3 abs3(const Vec3& v) {
+    return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
 
 }  // namespace wsd::render

@@ -25,7 +25,6 @@ inline double clamp_unit(double v) {
 //   marble      ½ + ½·sin(a·x + b·y + T), T the turbulence sum
 //   wood        g − floor(g), g = 5·N(a·x, b·y, c·z)
 // `noise_calls` is increased by the number of perlin_noise evaluations made.
-double perlin_pattern(PerlinKind kind, const Vec3& scale, int octaves, const Vec3& p,
-                      uint64_t& noise_calls);
+double perlin_pattern(PerlinKind kind, const Vec3& scale, int octaves, const Vec3& p, uint64_t& noise_calls);
 
 }  // namespace wsd::render

@@ -49,7 +49,9 @@ std::string printable(std::string_view s) {
     return out;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\f' || c == '\v';
+}
 
 // Splits off the next whitespace-separated token of `rest`; false at the end of the line or at a
 // '#', which starts a comment (also right after a token: "1#x" is the token "1").
@@ -94,7 +96,8 @@ bool decimal_overflows(std::string_view t) {
         ++i;
         const bool negative = i < t.size() && t[i] == '-';
         if (i < t.size() && (t[i] == '-' || t[i] == '+')) ++i;
-        for (; i < t.size() && t[i] >= '0' && t[i] <= '9'; ++i) exponent = std::min(exponent * 10 + (t[i] - '0'), 1000000LL);
+        for (; i < t.size() && t[i] >= '0' && t[i] <= '9'; ++i)
+            exponent = std::min(exponent * 10 + (t[i] - '0'), 1000000LL);
         if (negative) exponent = -exponent;
     }
     return lead + exponent > 0;
@@ -130,8 +133,8 @@ private:
     }
     void note_ignored(std::string_view keyword, bool known);
     bool statement(std::string_view line);
-    bool read_numbers(std::string_view keyword, std::string_view rest, double* out, size_t min,
-                      size_t max, size_t& count);
+    bool read_numbers(std::string_view keyword, std::string_view rest, double* out, size_t min, size_t max,
+                      size_t& count);
     bool vertex(std::string_view rest);
     bool texcoord(std::string_view rest);
     bool normal(std::string_view rest);
@@ -159,8 +162,8 @@ void ObjParser::note_ignored(std::string_view keyword, bool known) {
     if (noted_.size() >= kMaxNotes || noted_.count(keyword) != 0) return;
     noted_.emplace(keyword);
     const std::string what = known ? "(not used by wsd)" : "(unknown OBJ statement)";
-    notes_.push_back(name_ + ":" + std::to_string(line_) + ": note: ignoring '" + printable(keyword) +
-                     "' " + what);
+    notes_.push_back(name_ + ":" + std::to_string(line_) + ": note: ignoring '" + printable(keyword) + "' " +
+                     what);
 }
 
 bool ObjParser::read_numbers(std::string_view keyword, std::string_view rest, double* out, size_t min,
@@ -169,13 +172,15 @@ bool ObjParser::read_numbers(std::string_view keyword, std::string_view rest, do
     count = 0;
     while (next_token(rest, token)) {
         if (count == max)
-            return fail("too many numbers in '" + std::string(keyword) + "' (at most " +
-                        std::to_string(max) + ")");
+            return fail("too many numbers in '" + std::string(keyword) + "' (at most " + std::to_string(max) +
+                        ")");
         switch (parse_double(token, out[count])) {
-        case NumberStatus::Ok: break;
-        case NumberStatus::Bad: return fail("bad number '" + printable(token) + "'");
-        case NumberStatus::NotFinite:
-            return fail("number '" + printable(token) + "' is not finite (NaN, infinite or too large)");
+            case NumberStatus::Ok:
+                break;
+            case NumberStatus::Bad:
+                return fail("bad number '" + printable(token) + "'");
+            case NumberStatus::NotFinite:
+                return fail("number '" + printable(token) + "' is not finite (NaN, infinite or too large)");
         }
         ++count;
     }
@@ -309,12 +314,11 @@ bool ObjParser::statement(std::string_view line) {
     if (keyword == "f") return face(line);
     if (keyword == "vt") return texcoord(line);
     if (keyword == "vn") return normal(line);
-    static constexpr std::string_view kKnown[] = {"usemtl", "mtllib", "o", "g", "s", "l", "p",
-                                                  "vp", "cstype", "deg", "bmat", "step", "curv",
-                                                  "curv2", "surf", "parm", "trim", "hole", "scrv",
-                                                  "sp", "end", "con", "mg", "bevel", "c_interp",
-                                                  "d_interp", "lod", "shadow_obj", "trace_obj",
-                                                  "ctech", "stech", "maplib", "usemap"};
+    static constexpr std::string_view kKnown[] = {
+        "usemtl",     "mtllib",    "o",     "g",     "s",      "l",     "p",        "vp",       "cstype",
+        "deg",        "bmat",      "step",  "curv",  "curv2",  "surf",  "parm",     "trim",     "hole",
+        "scrv",       "sp",        "end",   "con",   "mg",     "bevel", "c_interp", "d_interp", "lod",
+        "shadow_obj", "trace_obj", "ctech", "stech", "maplib", "usemap"};
     bool known = false;
     for (std::string_view k : kKnown) known = known || k == keyword;
     note_ignored(keyword, known);
@@ -366,6 +370,7 @@ public:
             if (s.key.v == key.v && s.key.vt == key.vt && s.key.vn == key.vn) return s.value;
         }
     }
+
 private:
     struct Slot {
         Corner key;
@@ -406,7 +411,8 @@ std::shared_ptr<MeshData> ObjParser::build() const {
         mesh->vertices = positions_;
         for (const Face& f : faces_) {
             for (uint32_t k = 1; k + 1 < f.count; ++k) {
-                mesh->faces.emplace_back(corners_[f.first].v, corners_[f.first + k].v, corners_[f.first + k + 1].v);
+                mesh->faces.emplace_back(corners_[f.first].v, corners_[f.first + k].v,
+                                         corners_[f.first + k + 1].v);
                 mesh->face_lines.push_back(f.line);
             }
         }
@@ -438,8 +444,9 @@ std::shared_ptr<MeshData> ObjParser::build() const {
             Corner tri[3] = {corners_[f.first], corners_[f.first + k], corners_[f.first + k + 1]};
             uint32_t out[3];
             const bool flat = any_vn_ && tri[0].vn == kNone;
-            const glm::vec3 fn = flat ? flat_normal(positions_[tri[0].v], positions_[tri[1].v], positions_[tri[2].v])
-                                      : glm::vec3(0.0f);
+            const glm::vec3 fn =
+                flat ? flat_normal(positions_[tri[0].v], positions_[tri[1].v], positions_[tri[2].v])
+                     : glm::vec3(0.0f);
             for (uint32_t r = 0; r < 3; ++r) {
                 if (any_vt_ && tri[r].vt == kNone) tri[r].vt = kBaryRole + r;
                 // A flat corner is never shared: its normal belongs to this triangle alone.
@@ -493,10 +500,14 @@ void ObjParser::reserve_for(std::string_view text) {
     while (p < end) {
         while (p < end && (*p == ' ' || *p == '\t')) ++p;
         if (end - p >= 2) {
-            if (p[0] == 'v' && p[1] == ' ') ++v;
-            else if (p[0] == 'v' && p[1] == 't') ++vt;
-            else if (p[0] == 'v' && p[1] == 'n') ++vn;
-            else if (p[0] == 'f' && p[1] == ' ') ++f;
+            if (p[0] == 'v' && p[1] == ' ')
+                ++v;
+            else if (p[0] == 'v' && p[1] == 't')
+                ++vt;
+            else if (p[0] == 'v' && p[1] == 'n')
+                ++vn;
+            else if (p[0] == 'f' && p[1] == ' ')
+                ++f;
         }
         const void* nl = std::memchr(p, '\n', static_cast<size_t>(end - p));
         p = nl ? static_cast<const char*>(nl) + 1 : end;

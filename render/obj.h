@@ -12,9 +12,9 @@
 namespace wsd::render {
 
 struct ObjResult {
-    std::shared_ptr<MeshData> mesh;     // null on error
-    std::string error;                  // "FILE:LINE: message" on error
-    std::vector<std::string> notes;     // at most one per skipped statement kind, "FILE:LINE: ..."
+    std::shared_ptr<MeshData> mesh;  // null on error
+    std::string error;               // "FILE:LINE: message" on error
+    std::vector<std::string> notes;  // at most one per skipped statement kind, "FILE:LINE: ..."
 };
 
 // The language's limit on a mesh's triangle count (wsd-language.md §5: 2^24 primitives).

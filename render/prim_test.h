@@ -15,8 +15,7 @@ namespace wsd::render::detail {
 using Impl = Geometry::Impl;
 
 struct Counters {
-    uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0,
-             planes = 0;
+    uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0, planes = 0;
     void flush(RayStats& s) const {
         s.box_tests += boxes;
         s.triangle_tests += tri_tests;
@@ -59,8 +58,7 @@ struct Best {
 };
 
 inline bool ray_is_valid(const Ray& r, double tmax) {
-    return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) &&
-           !std::isnan(tmax);
+    return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) && !std::isnan(tmax);
 }
 
 // The power of two that brings a direction's largest component into [2^-64, 2^64], or 0 when
@@ -100,54 +98,54 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
                                               double& b2) {
     const uint32_t slot = e & kSlotMask;
     switch ((e >> kKindShift) & 3u) {
-    case 0: {
-        const TriPrim& tri = g.tris[slot];
-        if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, t,
-                           b1, b2))
-            return false;
-        prim = tri.prim;
-        return true;
-    }
-    case 1: {
-        const SpherePrim& s = g.spheres[slot];
-        ++c.sph_tests;
-        bool hit;
-        if (s.xform == kNoTransform) {
-            hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
-        } else {
-            const Transform& x = g.xforms[s.xform];
-            Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
-            double a = glm::dot(d, d);
-            hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius,
-                                   sphere_origin_error(x, s, r.o), limit, t);
+        case 0: {
+            const TriPrim& tri = g.tris[slot];
+            if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, t, b1,
+                               b2))
+                return false;
+            prim = tri.prim;
+            return true;
         }
-        if (!hit) return false;
-        ++c.sph_hits;
-        prim = s.prim;
-        b1 = b2 = 0;
-        return true;
-    }
-    default: {
-        const BoxPrim& bx = g.boxes[slot];
-        ++c.shape_boxes;
-        int face = 0;
-        bool hit;
-        if (bx.xform == kNoTransform) {
-            // The identity's own error bound (γ₃|o|, as a transform would give), so that a
-            // scene scaled by 2^k decides edge cases exactly as the unscaled one.
-            hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit,
-                                      t, face);
-        } else {
-            const Transform& x = g.xforms[bx.xform];
-            hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
-                                      x.inv_point_error(r.o) + bx.band, limit, t, face);
+        case 1: {
+            const SpherePrim& s = g.spheres[slot];
+            ++c.sph_tests;
+            bool hit;
+            if (s.xform == kNoTransform) {
+                hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
+            } else {
+                const Transform& x = g.xforms[s.xform];
+                Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
+                double a = glm::dot(d, d);
+                hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius, sphere_origin_error(x, s, r.o),
+                                       limit, t);
+            }
+            if (!hit) return false;
+            ++c.sph_hits;
+            prim = s.prim;
+            b1 = b2 = 0;
+            return true;
         }
-        if (!hit) return false;
-        prim = bx.prim;
-        b1 = face;
-        b2 = 0;
-        return true;
-    }
+        default: {
+            const BoxPrim& bx = g.boxes[slot];
+            ++c.shape_boxes;
+            int face = 0;
+            bool hit;
+            if (bx.xform == kNoTransform) {
+                // The identity's own error bound (γ₃|o|, as a transform would give), so that a
+                // scene scaled by 2^k decides edge cases exactly as the unscaled one.
+                hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit, t,
+                                          face);
+            } else {
+                const Transform& x = g.xforms[bx.xform];
+                hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
+                                          x.inv_point_error(r.o) + bx.band, limit, t, face);
+            }
+            if (!hit) return false;
+            prim = bx.prim;
+            b1 = face;
+            b2 = 0;
+            return true;
+        }
     }
 }
 

@@ -29,7 +29,9 @@ constexpr uint32_t kCentreSample = 0xffffffffu;
 
 using Clock = std::chrono::steady_clock;
 
-bool finite3(const Color& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+bool finite3(const Color& c) {
+    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+}
 
 std::vector<Region> make_tiles(const Region& r) {
     std::vector<Region> tiles;
@@ -39,7 +41,9 @@ std::vector<Region> make_tiles(const Region& r) {
     return tiles;
 }
 
-size_t area(const Region& r) { return size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0); }
+size_t area(const Region& r) {
+    return size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
+}
 
 // The adaptive prepass: each pixel's centre sample over `rect` (the region plus a 1-pixel
 // border, clipped to the image), and its display value (clamped, sRGB-encoded) for comparisons.
@@ -57,8 +61,13 @@ class TileRenderer {
 public:
     TileRenderer(const Scene& scene, Tracer& tracer, RayStats& stats, Film& film, const Region& region,
                  Prepass& prepass)
-        : tracer_(tracer), stats_(stats), film_(film), region_(region), prepass_(prepass),
-          seed_(scene.settings().seed), samples_(scene.settings().supersamples),
+        : tracer_(tracer),
+          stats_(stats),
+          film_(film),
+          region_(region),
+          prepass_(prepass),
+          seed_(scene.settings().seed),
+          samples_(scene.settings().supersamples),
           grid_(supersample_grid(scene.settings().supersamples)),
           threshold_(scene.settings().aa_threshold) {}
 
@@ -75,11 +84,11 @@ public:
     // Phase 1 of adaptive supersampling.
     void render_centres(const Region& t) {
         for_blocks(t, kCentreSample, [&](int x, int y, const Color& colour) {
-                      const size_t i = prepass_.index(x, y);
-                      prepass_.centre[i] = guarded(colour);
-                      const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
-                      prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
-                  });
+            const size_t i = prepass_.index(x, y);
+            prepass_.centre[i] = guarded(colour);
+            const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
+            prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
+        });
     }
 
     // Phase 2: the full grid where the centre value differs from one of its 4 neighbours' by more
@@ -95,7 +104,8 @@ public:
             for (int x = t.x0; x < t.x1; ++x) {
                 const size_t i = prepass_.index(x, y);
                 const bool refine = (x > p.x0 && differs(i, i - 1)) || (x + 1 < p.x1 && differs(i, i + 1)) ||
-                                    (y > p.y0 && differs(i, i - row)) || (y + 1 < p.y1 && differs(i, i + row));
+                                    (y > p.y0 && differs(i, i - row)) ||
+                                    (y + 1 < p.y1 && differs(i, i + row));
                 if (refine) {
                     ++stats_.adaptive_pixels;
                     store(x, y, full_pixel(x, y));

@@ -15,8 +15,8 @@
 namespace wsd::render {
 
 struct Film {
-    int width = 0, height = 0;       // size of this film (a region's size for tiles)
-    std::vector<float> rgb;          // linear RGB, row-major from the top row
+    int width = 0, height = 0;  // size of this film (a region's size for tiles)
+    std::vector<float> rgb;     // linear RGB, row-major from the top row
 };
 
 // Half-open pixel rectangle [x0, x1) × [y0, y1) of the full image.
@@ -25,11 +25,11 @@ struct Region {
 };
 
 struct RenderOptions {
-    int threads = 0;                    // 0 = all cores
+    int threads = 0;  // 0 = all cores
     bool use_bvh = true;
-    std::optional<Region> region;       // unset: the whole image
-    bool adaptive_lights = false;       // force adaptive sampling on every area light
-    bool specialise = true;             // false: the unspecialised reference path (tests)
+    std::optional<Region> region;  // unset: the whole image
+    bool adaptive_lights = false;  // force adaptive sampling on every area light
+    bool specialise = true;        // false: the unspecialised reference path (tests)
     std::function<void(double fraction, const RayStats& so_far)> progress;  // may be empty
     const std::atomic<bool>* cancel = nullptr;  // set to stop early (render returns false)
 };
@@ -40,7 +40,7 @@ struct RenderResult {
     double build_seconds = 0;
     double render_seconds = 0;
     bool cancelled = false;
-    std::vector<std::string> effects;   // the effects the scene calls for (see effects.h)
+    std::vector<std::string> effects;  // the effects the scene calls for (see effects.h)
 };
 
 class Scene;  // geometry + lights + materials + textures, ready to render

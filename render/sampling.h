@@ -54,8 +54,12 @@ inline Uniform2 uniform2(uint64_t h) {
     return {double(h >> 32) * 0x1p-32, double(h & 0xffffffffULL) * 0x1p-32};
 }
 
-inline Uniform2 cell_jitter(uint64_t light, uint32_t cell) { return uniform2(mix64(light ^ cell)); }
-inline Uniform2 camera_jitter(uint64_t sample) { return uniform2(mix64(sample ^ kCameraSalt)); }
+inline Uniform2 cell_jitter(uint64_t light, uint32_t cell) {
+    return uniform2(mix64(light ^ cell));
+}
+inline Uniform2 camera_jitter(uint64_t sample) {
+    return uniform2(mix64(sample ^ kCameraSalt));
+}
 
 // The camera-sample grid for `n` rays a pixel: n = k² gives k×k; another count m rows × n/m
 // columns, m the largest divisor of n that is ≤ √n.

@@ -11,13 +11,15 @@ namespace wsd::render {
 
 namespace {
 
-bool finite3(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool non_negative3(const Vec3& v) { return finite3(v) && v.x >= 0 && v.y >= 0 && v.z >= 0; }
+bool finite3(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool non_negative3(const Vec3& v) {
+    return finite3(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
+}
 
 void check_settings(const Settings& s, std::vector<SpecError>& errors) {
-    auto fail = [&errors](const char* msg) {
-        errors.push_back({SpecItem::Settings, 0, 0, msg, -1});
-    };
+    auto fail = [&errors](const char* msg) { errors.push_back({SpecItem::Settings, 0, 0, msg, -1}); };
     if (s.width < 1 || s.width > 100000 || s.height < 1 || s.height > 100000)
         fail("width and height must be between 1 and 100000");
     else if (long(s.width) * long(s.height) > (1L << 28))
@@ -91,23 +93,28 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
         Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
         const Mat4& m = sh.object_to_world;
         switch (sh.kind) {
-        case ShapeKind::Sphere:
-            add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
-            break;
-        case ShapeKind::Box: add_box_corners(m, sh.box_min, sh.box_max, lo, hi); break;
-        case ShapeKind::Triangle:
-            for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
-            break;
-        case ShapeKind::Mesh: {
-            Vec3 mlo(std::numeric_limits<double>::infinity()), mhi(-std::numeric_limits<double>::infinity());
-            for (const glm::vec3& v : sh.mesh->vertices) {
-                mlo = glm::min(mlo, Vec3(v));
-                mhi = glm::max(mhi, Vec3(v));
+            case ShapeKind::Sphere:
+                add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
+                break;
+            case ShapeKind::Box:
+                add_box_corners(m, sh.box_min, sh.box_max, lo, hi);
+                break;
+            case ShapeKind::Triangle:
+                for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
+                break;
+            case ShapeKind::Mesh: {
+                Vec3 mlo(std::numeric_limits<double>::infinity()),
+                    mhi(-std::numeric_limits<double>::infinity());
+                for (const glm::vec3& v : sh.mesh->vertices) {
+                    mlo = glm::min(mlo, Vec3(v));
+                    mhi = glm::max(mhi, Vec3(v));
+                }
+                if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
+                break;
             }
-            if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
-            break;
-        }
-        case ShapeKind::Plane: transmissive_unbounded_ = true; break;
+            case ShapeKind::Plane:
+                transmissive_unbounded_ = true;
+                break;
         }
         if (sh.kind == ShapeKind::Plane || !(lo.x <= hi.x)) continue;
         // Pad by a relative margin far above the rounding of the shapes' own intersection code,
@@ -126,8 +133,8 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
     }
 }
 
-std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors,
-                                         bool use_bvh, int threads) {
+std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
+                                         int threads) {
     const auto start = std::chrono::steady_clock::now();
     const size_t errors_before = errors.size();
     auto scene = std::shared_ptr<Scene>(new Scene());
@@ -148,8 +155,7 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
             continue;
         }
         scene->lights_.push_back(prepare_light(l));
-        if (l.kind == LightKind::Area && l.samples_u * l.samples_v > 1)
-            scene->multi_cell_area_light_ = true;
+        if (l.kind == LightKind::Area && l.samples_u * l.samples_v > 1) scene->multi_cell_area_light_ = true;
     }
 
     ImageCache cache;
@@ -194,8 +200,7 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     bool shapes_ok = true;
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
         if (spec.shapes[i].material >= spec.materials.size()) {
-            errors.push_back({SpecItem::Shape, i, spec.shapes[i].tag,
-                              "material index out of range", -1});
+            errors.push_back({SpecItem::Shape, i, spec.shapes[i].tag, "material index out of range", -1});
             shapes_ok = false;
         }
         scene->object_to_world_.push_back(spec.shapes[i].object_to_world);
@@ -205,8 +210,7 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
 
     scene->effects_ = analyse_effects(spec);
     scene->compute_transmissive_bounds(spec);
-    scene->build_seconds_ =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    scene->build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;
 }
 

@@ -20,11 +20,11 @@ struct Material {
     std::unique_ptr<Texture> texture;  // replaces color when set
     std::unique_ptr<Texture> bump;     // Perlin normal perturbation
     double bump_strength = 0;
-    double ambient = 0.2;              // resolved: the material's own or settings.ambient
+    double ambient = 0.2;  // resolved: the material's own or settings.ambient
     double diffuse = 1, specular = 0, shininess = 50;
     double reflection = 0, transmission = 0, ior = 1.5;
     Color absorption{0};
-    bool absorbs = false;              // transmissive with non-zero absorption
+    bool absorbs = false;  // transmissive with non-zero absorption
 };
 
 class Scene {
@@ -43,8 +43,7 @@ public:
     double build_seconds() const { return build_seconds_; }
 
 private:
-    friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&,
-                                                    bool, int);
+    friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&, bool, int);
     void compute_transmissive_bounds(const SceneSpec& spec);
 
     std::unique_ptr<Geometry> geometry_;
@@ -58,7 +57,7 @@ private:
         Vec3 lo, hi;
     };
     std::vector<Bounds> transmissive_bounds_;  // world boxes, padded; merged when there are many
-    bool transmissive_unbounded_ = false;       // a transmissive plane: always walk
+    bool transmissive_unbounded_ = false;      // a transmissive plane: always walk
     bool multi_cell_area_light_ = false;
     double build_seconds_ = 0;
 };

@@ -6,12 +6,11 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace wsd::render {
 
@@ -26,8 +25,8 @@ enum class PerlinKind { Noise, Turbulence, Marble, Wood };
 
 struct TextureSpec {
     TextureKind kind = TextureKind::Checker;
-    std::string image_path;            // Image: path as it should be opened (already resolved)
-    double checker_scale = 1.0;        // Checker: side of one square
+    std::string image_path;      // Image: path as it should be opened (already resolved)
+    double checker_scale = 1.0;  // Checker: side of one square
     PerlinKind perlin = PerlinKind::Noise;
     Vec3 perlin_scale{1.0, 1.0, 1.0};  // Perlin: frequencies a, b, c
     int octaves = 9;                   // Perlin: L

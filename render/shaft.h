@@ -58,9 +58,9 @@ public:
 
     // True when no point of the float box [lo, hi] is in the shaft.
     bool outside(const float* lo, const float* hi) const {
-        const double box_scale = std::max({std::abs(double(lo[0])), std::abs(double(lo[1])),
-                                           std::abs(double(lo[2])), std::abs(double(hi[0])),
-                                           std::abs(double(hi[1])), std::abs(double(hi[2]))});
+        const double box_scale =
+            std::max({std::abs(double(lo[0])), std::abs(double(lo[1])), std::abs(double(lo[2])),
+                      std::abs(double(hi[0])), std::abs(double(hi[1])), std::abs(double(hi[2]))});
         const double slack = margin_ + 1e-9 * box_scale;
         for (int k = 0; k < 5; ++k) {
             const Vec3& n = normal_[k];
@@ -74,7 +74,8 @@ public:
 
     // True when all three vertices lie outside one of the shaft's planes.
     bool outside_triangle(const Vec3f& a, const Vec3f& b, const Vec3f& c) const {
-        const double slack = margin_ + 1e-9 * std::max({max_abs(Vec3(a)), max_abs(Vec3(b)), max_abs(Vec3(c))});
+        const double slack =
+            margin_ + 1e-9 * std::max({max_abs(Vec3(a)), max_abs(Vec3(b)), max_abs(Vec3(c))});
         for (int k = 0; k < 5; ++k) {
             const double lim = offset_[k] - slack;
             if (glm::dot(normal_[k], Vec3(a)) < lim && glm::dot(normal_[k], Vec3(b)) < lim &&
@@ -177,7 +178,7 @@ private:
     static double max_abs(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
     static double l1(const Vec3& v) { return std::abs(v.x) + std::abs(v.y) + std::abs(v.z); }
 
-    Vec3 normal_[5];     // inward unit normals: inside means dot(n, x) ≥ offset
+    Vec3 normal_[5];  // inward unit normals: inside means dot(n, x) ≥ offset
     double offset_[5] = {};
     double scale_ = 0;
     double margin_ = 0;  // the apex ball's radius plus the rounding margin

@@ -49,35 +49,35 @@ Vec2 box_uv(const Vec3& p, const Vec3& lo, const Vec3& hi, int face) {
     double s = 0, t = 0;
     int col = 1, row = 1;
     switch (face) {
-    case 0:  // −x: right is −z
-        col = 0;
-        s = frac(hi.z - p.z, e.z);
-        t = frac(hi.y - p.y, e.y);
-        break;
-    case 1:  // +x: right is +z
-        col = 2;
-        s = frac(p.z - lo.z, e.z);
-        t = frac(hi.y - p.y, e.y);
-        break;
-    case 2:  // −y: top edge meets −z's bottom edge
-        row = 2;
-        s = frac(p.x - lo.x, e.x);
-        t = frac(p.z - lo.z, e.z);
-        break;
-    case 3:  // +y: bottom edge meets −z's top edge
-        row = 0;
-        s = frac(p.x - lo.x, e.x);
-        t = frac(hi.z - p.z, e.z);
-        break;
-    case 4:  // −z: right is +x
-        s = frac(p.x - lo.x, e.x);
-        t = frac(hi.y - p.y, e.y);
-        break;
-    default:  // +z: right is −x
-        col = 3;
-        s = frac(hi.x - p.x, e.x);
-        t = frac(hi.y - p.y, e.y);
-        break;
+        case 0:  // −x: right is −z
+            col = 0;
+            s = frac(hi.z - p.z, e.z);
+            t = frac(hi.y - p.y, e.y);
+            break;
+        case 1:  // +x: right is +z
+            col = 2;
+            s = frac(p.z - lo.z, e.z);
+            t = frac(hi.y - p.y, e.y);
+            break;
+        case 2:  // −y: top edge meets −z's bottom edge
+            row = 2;
+            s = frac(p.x - lo.x, e.x);
+            t = frac(p.z - lo.z, e.z);
+            break;
+        case 3:  // +y: bottom edge meets −z's top edge
+            row = 0;
+            s = frac(p.x - lo.x, e.x);
+            t = frac(hi.z - p.z, e.z);
+            break;
+        case 4:  // −z: right is +x
+            s = frac(p.x - lo.x, e.x);
+            t = frac(hi.y - p.y, e.y);
+            break;
+        default:  // +z: right is −x
+            col = 3;
+            s = frac(hi.x - p.x, e.x);
+            t = frac(hi.y - p.y, e.y);
+            break;
     }
     return {(col + s) / 4.0, (row + t) / 3.0};
 }

@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstdint>
-
 #include <glm/gtc/type_ptr.hpp>
 
 #include "render/aabb.h"
@@ -66,8 +65,9 @@ struct PlanePrim {
 
 // Watertight ray/triangle test. Returns true for a hit with δt < t < limit (δt bounds the
 // rounding error of t, pbrt-v4), with barycentrics b1, b2 of v1 and v2.
-[[gnu::always_inline]] inline bool intersect_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2,
-                               double limit, double& t_out, double& b1_out, double& b2_out) {
+[[gnu::always_inline]] inline bool intersect_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
+                                                      const Vec3f& v2, double limit, double& t_out,
+                                                      double& b1_out, double& b2_out) {
     const int kx = r.kx, ky = r.ky, kz = r.kz;
     // Components through a pointer: glm's operator[] is a switch on the index.
     const float* a0 = glm::value_ptr(v0);
@@ -89,11 +89,14 @@ struct PlanePrim {
     // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
     double e0 = opaque(x1 * y2) - opaque(y1 * x2);
     double e1 = opaque(x2 * y0) - opaque(y2 * x0);
-    if (e0 == 0) [[unlikely]] e0 = difference_of_products(x1, y2, y1, x2);
-    if (e1 == 0) [[unlikely]] e1 = difference_of_products(x2, y0, y2, x0);
+    if (e0 == 0) [[unlikely]]
+        e0 = difference_of_products(x1, y2, y1, x2);
+    if (e1 == 0) [[unlikely]]
+        e1 = difference_of_products(x2, y0, y2, x0);
     if ((e0 < 0 && e1 > 0) || (e0 > 0 && e1 < 0)) return false;
     double e2 = opaque(x0 * y1) - opaque(y0 * x1);
-    if (e2 == 0) [[unlikely]] e2 = difference_of_products(x0, y1, y0, x1);
+    if (e2 == 0) [[unlikely]]
+        e2 = difference_of_products(x0, y1, y0, x1);
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
     double det = e0 + e1 + e2;
     if (det == 0) return false;
@@ -113,8 +116,7 @@ struct PlanePrim {
     double delta_y = gamma(5) * (max_yt + max_pz);
     double delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
     double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
-    double delta_t =
-        3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::abs(det);
+    double delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::abs(det);
     if (t <= delta_t) return false;
 
     t_out = t;
@@ -126,8 +128,9 @@ struct PlanePrim {
 // Ray/sphere in the frame where the ray is (o, d) and the sphere (c, radius). `o_err` bounds the
 // error already in o (zero for world-space spheres). Picks the nearest root in (0, limit) that is
 // not the surface the origin lies on.
-[[gnu::always_inline]] inline bool intersect_sphere(const Vec3& o, const Vec3& d, double a, double inv_a, const Vec3& c,
-                             double radius, const Vec3& o_err, double limit, double& t_out) {
+[[gnu::always_inline]] inline bool intersect_sphere(const Vec3& o, const Vec3& d, double a, double inv_a,
+                                                    const Vec3& c, double radius, const Vec3& o_err,
+                                                    double limit, double& t_out) {
     Vec3 f = o - c;
     double b = glm::dot(f, d);
     // Haines et al.: the discriminant from the centre-to-closest-point vector, no b² − ac.
@@ -139,7 +142,7 @@ struct PlanePrim {
     double cc = ff - r2;
     double q = -(b + std::copysign(std::sqrt(a * disc), b));
     if (q == 0) return false;  // tangent at the origin
-    double t_small = cc / q;    // the root that tends to 0 as the origin nears the surface
+    double t_small = cc / q;   // the root that tends to 0 as the origin nears the surface
     double t_big = q * inv_a;
 
     // |cc| within its rounding error means the origin is on the sphere: that root is the
@@ -220,12 +223,11 @@ inline bool intersect_box_local(const Vec3& o, const Vec3& d, const Vec3& lo, co
     return false;
 }
 
-inline bool intersect_plane(const Vec3& o, const Vec3& d, const PlanePrim& p, double limit,
-                            double& t_out) {
+inline bool intersect_plane(const Vec3& o, const Vec3& d, const PlanePrim& p, double limit, double& t_out) {
     double no = p.n.x * o.x + p.n.y * o.y + p.n.z * o.z;
     double num = p.c - no;
-    double err = gamma(4) * (std::abs(p.c) + std::abs(p.n.x * o.x) + std::abs(p.n.y * o.y) +
-                             std::abs(p.n.z * o.z));
+    double err =
+        gamma(4) * (std::abs(p.c) + std::abs(p.n.x * o.x) + std::abs(p.n.y * o.y) + std::abs(p.n.z * o.z));
     if (std::abs(num) <= err) return false;  // the origin lies on the plane
     double den = glm::dot(p.n, d);
     if (den == 0) return false;

@@ -18,21 +18,30 @@ struct RayStats {
     uint64_t shape_box_tests = 0;  // tests against `box` shapes
     uint64_t plane_tests = 0;
     uint64_t fresnel_evals = 0;
-    uint64_t texture_evals = 0;    // image/checker lookups
-    uint64_t noise_evals = 0;      // Perlin evaluations (textures and bumps)
+    uint64_t texture_evals = 0;  // image/checker lookups
+    uint64_t noise_evals = 0;    // Perlin evaluations (textures and bumps)
     uint64_t nonfinite_samples = 0;
     uint64_t rejected_rays = 0;    // NaN/Inf rays refused before traversal
     uint64_t adaptive_pixels = 0;  // pixels that took the full supersampling grid
 
     RayStats& operator+=(const RayStats& o) {
-        camera_rays += o.camera_rays; shadow_rays += o.shadow_rays;
+        camera_rays += o.camera_rays;
+        shadow_rays += o.shadow_rays;
         shaft_answered_rays += o.shaft_answered_rays;
-        reflection_rays += o.reflection_rays; refraction_rays += o.refraction_rays;
-        triangle_tests += o.triangle_tests; triangle_hits += o.triangle_hits;
-        sphere_tests += o.sphere_tests; sphere_hits += o.sphere_hits;
-        box_tests += o.box_tests; shape_box_tests += o.shape_box_tests; plane_tests += o.plane_tests;
-        fresnel_evals += o.fresnel_evals; texture_evals += o.texture_evals; noise_evals += o.noise_evals;
-        nonfinite_samples += o.nonfinite_samples; rejected_rays += o.rejected_rays;
+        reflection_rays += o.reflection_rays;
+        refraction_rays += o.refraction_rays;
+        triangle_tests += o.triangle_tests;
+        triangle_hits += o.triangle_hits;
+        sphere_tests += o.sphere_tests;
+        sphere_hits += o.sphere_hits;
+        box_tests += o.box_tests;
+        shape_box_tests += o.shape_box_tests;
+        plane_tests += o.plane_tests;
+        fresnel_evals += o.fresnel_evals;
+        texture_evals += o.texture_evals;
+        noise_evals += o.noise_evals;
+        nonfinite_samples += o.nonfinite_samples;
+        rejected_rays += o.rejected_rays;
         adaptive_pixels += o.adaptive_pixels;
         return *this;
     }

@@ -1,13 +1,13 @@
 // The texture kinds behind Texture::create (image, checker, Perlin) and the bump perturbation.
 // Image decoding and bilinear lookup live in image_texture.cpp, the noise in noise.cpp. Every
 // function here returns finite values for any input, NaN included (robustness.md R34, R37).
+#include "render/texture.h"
+
 #include <algorithm>
 #include <cmath>
-
 #include <glm/glm.hpp>
 
 #include "render/noise.h"
-#include "render/texture.h"
 
 namespace wsd::render {
 
@@ -21,6 +21,7 @@ public:
         // Only planes repeat their texture vertically; elsewhere v is clamped (wsd-language §4).
         return sample_image(*image_, s.uv, s.planar);
     }
+
 private:
     std::shared_ptr<const Image> image_;
 };
@@ -53,6 +54,7 @@ public:
         }
         return parity == 0 ? c1_ : c2_;
     }
+
 private:
     double inv_scale_;
     Color c1_, c2_;
@@ -61,7 +63,10 @@ private:
 class PerlinTexture final : public Texture {
 public:
     explicit PerlinTexture(const TextureSpec& spec)
-        : kind_(spec.perlin), scale_(spec.perlin_scale), octaves_(spec.octaves), c1_(spec.color1),
+        : kind_(spec.perlin),
+          scale_(spec.perlin_scale),
+          octaves_(spec.octaves),
+          c1_(spec.color1),
           c2_(spec.color2) {}
     Color eval(const SurfaceHit& s, RayStats& stats) const override {
         const double c = coef(s.p_object, stats);
@@ -70,6 +75,7 @@ public:
     double coef(const Vec3& p, RayStats& stats) const override {
         return perlin_pattern(kind_, scale_, octaves_, p, stats.noise_evals);
     }
+
 private:
     PerlinKind kind_;
     Vec3 scale_;
@@ -77,7 +83,9 @@ private:
     Color c1_, c2_;
 };
 
-bool all_finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool all_finite(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // v / |v|, scaled first by its largest component so that |v|² cannot overflow or underflow.
 // False if v is zero or not finite.
@@ -94,28 +102,28 @@ bool safe_normalize(const Vec3& v, Vec3& out) {
 
 std::unique_ptr<Texture> Texture::create(const TextureSpec& spec, ImageCache& cache, std::string& error) {
     switch (spec.kind) {
-    case TextureKind::Image: {
-        auto image = cache.get(spec.image_path, error);
-        if (!image) return nullptr;
-        return std::make_unique<ImageTexture>(std::move(image));
-    }
-    case TextureKind::Checker:
-        if (!(spec.checker_scale > 0.0) || !std::isfinite(spec.checker_scale) ||
-            !std::isfinite(1.0 / spec.checker_scale)) {
-            error = "checker scale must be a positive finite number";
-            return nullptr;
+        case TextureKind::Image: {
+            auto image = cache.get(spec.image_path, error);
+            if (!image) return nullptr;
+            return std::make_unique<ImageTexture>(std::move(image));
         }
-        return std::make_unique<CheckerTexture>(spec.checker_scale, spec.color1, spec.color2);
-    case TextureKind::Perlin:
-        if (spec.octaves < 0) {
-            error = "perlin octaves must not be negative";
-            return nullptr;
-        }
-        if (!all_finite(spec.perlin_scale)) {
-            error = "perlin scale must be finite";
-            return nullptr;
-        }
-        return std::make_unique<PerlinTexture>(spec);
+        case TextureKind::Checker:
+            if (!(spec.checker_scale > 0.0) || !std::isfinite(spec.checker_scale) ||
+                !std::isfinite(1.0 / spec.checker_scale)) {
+                error = "checker scale must be a positive finite number";
+                return nullptr;
+            }
+            return std::make_unique<CheckerTexture>(spec.checker_scale, spec.color1, spec.color2);
+        case TextureKind::Perlin:
+            if (spec.octaves < 0) {
+                error = "perlin octaves must not be negative";
+                return nullptr;
+            }
+            if (!all_finite(spec.perlin_scale)) {
+                error = "perlin scale must be finite";
+                return nullptr;
+            }
+            return std::make_unique<PerlinTexture>(spec);
     }
     error = "unknown texture kind";
     return nullptr;

@@ -28,6 +28,7 @@ std::shared_ptr<const Image> load_image(const std::string& path, std::string& er
 class ImageCache {
 public:
     std::shared_ptr<const Image> get(const std::string& path, std::string& error);
+
 private:
     std::map<std::string, std::shared_ptr<const Image>> images_;
 };
@@ -41,7 +42,11 @@ public:
     // perlin_noise call (turbulence and marble make L calls, a bump three patterns' worth).
     virtual Color eval(const SurfaceHit& s, RayStats& stats) const = 0;
     // The scalar coefficient in [0, 1] at an object-frame point (Perlin kinds; used by bumps).
-    virtual double coef(const Vec3& p, RayStats& stats) const { (void)p; (void)stats; return 0.5; }
+    virtual double coef(const Vec3& p, RayStats& stats) const {
+        (void)p;
+        (void)stats;
+        return 0.5;
+    }
 };
 
 // The bumped shading normal: normalize(n + strength·(f(q), f(q.yzx), f(q.zxy))), f = 2·coef − 1,

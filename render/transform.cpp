@@ -13,26 +13,25 @@ double abs_dot(const Vec3& a, const Vec3& b) {
     return std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z);
 }
 
-Vec3 row(const Mat3& m, int i) { return {m[0][i], m[1][i], m[2][i]}; }
+Vec3 row(const Mat3& m, int i) {
+    return {m[0][i], m[1][i], m[2][i]};
+}
 
 }  // namespace
 
 Vec3 Transform::point_error(const Vec3& p) const {
-    return {gamma(3) * (abs_dot(l[0], p) + std::abs(t.x)),
-            gamma(3) * (abs_dot(l[1], p) + std::abs(t.y)),
+    return {gamma(3) * (abs_dot(l[0], p) + std::abs(t.x)), gamma(3) * (abs_dot(l[1], p) + std::abs(t.y)),
             gamma(3) * (abs_dot(l[2], p) + std::abs(t.z))};
 }
 
 Vec3 Transform::point_error(const Vec3& p, const Vec3& e) const {
     Vec3 base = point_error(p);
-    return {base.x + (1 + gamma(3)) * abs_dot(l[0], e),
-            base.y + (1 + gamma(3)) * abs_dot(l[1], e),
+    return {base.x + (1 + gamma(3)) * abs_dot(l[0], e), base.y + (1 + gamma(3)) * abs_dot(l[1], e),
             base.z + (1 + gamma(3)) * abs_dot(l[2], e)};
 }
 
 Vec3 Transform::inv_point_error(const Vec3& p) const {
-    return {gamma(3) * (abs_dot(il[0], p) + std::abs(it.x)),
-            gamma(3) * (abs_dot(il[1], p) + std::abs(it.y)),
+    return {gamma(3) * (abs_dot(il[0], p) + std::abs(it.x)), gamma(3) * (abs_dot(il[1], p) + std::abs(it.y)),
             gamma(3) * (abs_dot(il[2], p) + std::abs(it.z))};
 }
 
@@ -89,8 +88,8 @@ std::optional<std::string> make_transform(const Mat4& m, Transform& out) {
             for (int k = 0; k < 3; ++k) mag += std::abs(inv[k][i] * lin[j][k]);
         }
         t.resid_lin[i] = rsum + gamma(4) * mag;
-        double tmag = std::abs(inv[0][i] * trans.x) + std::abs(inv[1][i] * trans.y) +
-                      std::abs(inv[2][i] * trans.z);
+        double tmag =
+            std::abs(inv[0][i] * trans.x) + std::abs(inv[1][i] * trans.y) + std::abs(inv[2][i] * trans.z);
         t.resid_t[i] = std::abs(inv_of_t[i] + inv_t[i]) + gamma(4) * tmag;
     }
     out = t;

@@ -22,22 +22,18 @@ struct Transform {
     // resid_lin[i]·max|p_j| + resid_t[i]. Grows with the condition number of l.
     Vec3 resid_lin{0, 0, 0};
     Vec3 resid_t{0, 0, 0};
-    double det = 1;         // determinant of l
-    double scale = 1;       // uniform scale when `similarity`
+    double det = 1;    // determinant of l
+    double scale = 1;  // uniform scale when `similarity`
     bool identity = true;
     bool similarity = true;  // l = scale · orthogonal (rotation, possibly mirrored)
 
-    Vec3 point(const Vec3& p) const {
-        return {dot(l[0], p) + t.x, dot(l[1], p) + t.y, dot(l[2], p) + t.z};
-    }
+    Vec3 point(const Vec3& p) const { return {dot(l[0], p) + t.x, dot(l[1], p) + t.y, dot(l[2], p) + t.z}; }
     Vec3 vector(const Vec3& v) const { return {dot(l[0], v), dot(l[1], v), dot(l[2], v)}; }
     Vec3 normal(const Vec3& n) const { return {dot(nl[0], n), dot(nl[1], n), dot(nl[2], n)}; }
     Vec3 inv_point(const Vec3& p) const {
         return {dot(il[0], p) + it.x, dot(il[1], p) + it.y, dot(il[2], p) + it.z};
     }
-    Vec3 inv_vector(const Vec3& v) const {
-        return {dot(il[0], v), dot(il[1], v), dot(il[2], v)};
-    }
+    Vec3 inv_vector(const Vec3& v) const { return {dot(il[0], v), dot(il[1], v), dot(il[2], v)}; }
     // Error bound of point(p) for an exact p, and of point(p) when p carries error `e`.
     Vec3 point_error(const Vec3& p) const;
     Vec3 point_error(const Vec3& p, const Vec3& e) const;

@@ -2,10 +2,10 @@
 // and a moon in the spherical UV layout, a dice in the unfolded-cube cross layout, marble floor
 // tiles (from the project's own Perlin noise), and a torus OBJ with normals and UVs.
 // Usage: make_assets EXAMPLES_DIR (writes EXAMPLES_DIR/textures/*.png and models/torus.obj).
-#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "render/image_io.h"
@@ -21,7 +21,8 @@ constexpr double pi = 3.14159265358979323846;
 
 double fbm(Vec3 p, int octaves) {
     double sum = 0, amp = 0.5;
-    for (int i = 0; i < octaves; ++i, p *= 2.0, amp *= 0.5) sum += amp * wsd::render::perlin_noise(p.x, p.y, p.z);
+    for (int i = 0; i < octaves; ++i, p *= 2.0, amp *= 0.5)
+        sum += amp * wsd::render::perlin_noise(p.x, p.y, p.z);
     return sum;
 }
 
@@ -31,14 +32,18 @@ Vec3 sphere_dir(double u, double v) {
     return {std::cos(lat) * std::sin(lon), std::sin(lat), -std::cos(lat) * std::cos(lon)};
 }
 
-Color mix(const Color& a, const Color& b, double t) { return a + (b - a) * std::clamp(t, 0.0, 1.0); }
+Color mix(const Color& a, const Color& b, double t) {
+    return a + (b - a) * std::clamp(t, 0.0, 1.0);
+}
 
 void set(Film& f, int x, int y, const Color& c) {
     float* px = &f.rgb[3 * (size_t(y) * size_t(f.width) + size_t(x))];
     px[0] = float(c.r), px[1] = float(c.g), px[2] = float(c.b);
 }
 
-Film make(int w, int h) { return Film{w, h, std::vector<float>(size_t(w) * size_t(h) * 3)}; }
+Film make(int w, int h) {
+    return Film{w, h, std::vector<float>(size_t(w) * size_t(h) * 3)};
+}
 
 Film earth() {
     Film f = make(512, 256);
@@ -59,7 +64,7 @@ Film earth() {
 Film moon() {
     Film f = make(512, 256);
     const Vec3 craters[] = {{0.3, 0.4, -0.86}, {-0.5, 0.1, -0.86}, {0.1, -0.6, -0.79},
-                            {0.7, -0.2, 0.68},  {-0.2, 0.8, 0.56},  {-0.6, -0.5, 0.62}};
+                            {0.7, -0.2, 0.68}, {-0.2, 0.8, 0.56},  {-0.6, -0.5, 0.62}};
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) {
             Vec3 n = sphere_dir((x + 0.5) / f.width, (y + 0.5) / f.height);
@@ -78,7 +83,9 @@ Film moon() {
 Film dice() {
     const int s = 128;
     Film f = make(4 * s, 3 * s);
-    struct Face { int col, row, pips; };
+    struct Face {
+        int col, row, pips;
+    };
     const Face faces[] = {{0, 1, 2}, {1, 1, 1}, {2, 1, 5}, {3, 1, 6}, {1, 0, 3}, {1, 2, 4}};
     const double spots[7][6][2] = {{},
                                    {{.5, .5}},
@@ -87,7 +94,7 @@ Film dice() {
                                    {{.25, .25}, {.75, .25}, {.25, .75}, {.75, .75}},
                                    {{.25, .25}, {.75, .25}, {.5, .5}, {.25, .75}, {.75, .75}},
                                    {{.25, .25}, {.75, .25}, {.25, .5}, {.75, .5}, {.25, .75}, {.75, .75}}};
-    const Color rainbow[6] = {{0.8, 0.1, 0.1}, {0.9, 0.5, 0.05}, {0.85, 0.8, 0.1},
+    const Color rainbow[6] = {{0.8, 0.1, 0.1},  {0.9, 0.5, 0.05}, {0.85, 0.8, 0.1},
                               {0.1, 0.6, 0.15}, {0.1, 0.25, 0.8}, {0.45, 0.1, 0.6}};
     for (int y = 0; y < f.height; ++y)
         for (int x = 0; x < f.width; ++x) set(f, x, y, Color(0.05));
@@ -117,7 +124,8 @@ Film marble_tiles() {
             bool cream = (tx + ty) % 2 == 0;
             Vec3 p(x / 64.0, y / 64.0, cream ? 0.3 : 7.7);
             double t = 0;
-            for (int l = 1; l <= 6; ++l) t += std::abs(wsd::render::perlin_noise(l * p.x, l * p.y, l * p.z)) / l;
+            for (int l = 1; l <= 6; ++l)
+                t += std::abs(wsd::render::perlin_noise(l * p.x, l * p.y, l * p.z)) / l;
             double vein = 0.5 + 0.5 * std::sin(3 * p.x + 2 * p.y + 6 * t);
             Color base = cream ? Color(0.85, 0.78, 0.6) : Color(0.08, 0.3, 0.15);
             Color dark = cream ? Color(0.55, 0.48, 0.35) : Color(0.02, 0.12, 0.05);
@@ -134,14 +142,15 @@ Film marble_tiles() {
 bool write_torus(const std::string& path, double R, double r, int nu, int nv) {
     FILE* f = std::fopen(path.c_str(), "w");
     if (!f) return false;
-    std::fprintf(f, "# torus R=%g r=%g, %d x %d quads, written by tools/make_assets.cpp\no torus\n", R, r, nu, nv);
+    std::fprintf(f, "# torus R=%g r=%g, %d x %d quads, written by tools/make_assets.cpp\no torus\n", R, r, nu,
+                 nv);
     for (int i = 0; i <= nu; ++i)
         for (int j = 0; j <= nv; ++j) {
             double a = 2 * pi * i / nu, b = 2 * pi * j / nv;
             Vec3 n(std::cos(b) * std::cos(a), std::sin(b), std::cos(b) * std::sin(a));
             Vec3 p = Vec3(R * std::cos(a), 0, R * std::sin(a)) + r * n;
-            std::fprintf(f, "v %.6f %.6f %.6f\nvn %.6f %.6f %.6f\nvt %.6f %.6f\n", p.x, p.y, p.z, n.x, n.y, n.z,
-                         double(i) / nu * 3, double(j) / nv);
+            std::fprintf(f, "v %.6f %.6f %.6f\nvn %.6f %.6f %.6f\nvt %.6f %.6f\n", p.x, p.y, p.z, n.x, n.y,
+                         n.z, double(i) / nu * 3, double(j) / nv);
         }
     auto id = [&](int i, int j) { return i * (nv + 1) + j + 1; };
     for (int i = 0; i < nu; ++i)
@@ -163,8 +172,10 @@ int main(int argc, char** argv) {
     std::error_code ec;
     std::filesystem::create_directories(dir + "/textures", ec);
     std::filesystem::create_directories(dir + "/models", ec);
-    const std::pair<const char*, Film> outputs[] = {
-        {"earth.png", earth()}, {"moon.png", moon()}, {"dice.png", dice()}, {"marble-tiles.png", marble_tiles()}};
+    const std::pair<const char*, Film> outputs[] = {{"earth.png", earth()},
+                                                    {"moon.png", moon()},
+                                                    {"dice.png", dice()},
+                                                    {"marble-tiles.png", marble_tiles()}};
     for (const auto& [name, film] : outputs) {
         std::string error;
         if (!wsd::render::write_image(dir + "/textures/" + name, film, error)) {

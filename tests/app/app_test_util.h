@@ -80,7 +80,8 @@ inline RunResult run_wsd(const TempDir& dir, const std::string& args, const std:
 // Files in `dir` other than the captured outputs (to check that nothing partial is left behind).
 inline std::vector<std::string> list_files(const TempDir& dir) {
     std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(dir.path())) names.push_back(entry.path().filename().string());
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        names.push_back(entry.path().filename().string());
     return names;
 }
 
@@ -123,7 +124,8 @@ inline std::string tiny_scene(int seed = 3, int size = 16) {
            "camera { position <0, 1, -4>  look_at <0, 0.5, 0>  fov 50 }\n"
            "light area { position <2, 5, -2>  u <1, 0, 0>  v <0, 0, 1>  samples 2 }\n"
            "plane { normal <0, 1, 0>  distance 0  material { texture checker { scale 0.25 } } }\n"
-           "sphere { center <0, 0.7, 0>  radius 0.7  material { color <0.9, 0.2, 0.2>  specular 0.5  reflection 0.3 } }\n";
+           "sphere { center <0, 0.7, 0>  radius 0.7  material { color <0.9, 0.2, 0.2>  specular 0.5  "
+           "reflection 0.3 } }\n";
 }
 
 }  // namespace wsd::test

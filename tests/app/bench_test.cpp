@@ -2,7 +2,6 @@
 // supersampling resolves, an area light, a mirror): every sweep row is in bench.csv, errors are
 // non-negative and fall as supersamples rise, and bench.svg is balanced XML with one path per knob.
 #include <catch2/catch.hpp>
-
 #include <map>
 #include <sstream>
 
@@ -28,7 +27,9 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
 
 size_t count_tags(const std::string& xml, const std::string& name) {
     size_t n = 0;
-    for (size_t at = xml.find("<" + name + " "); at != std::string::npos; at = xml.find("<" + name + " ", at + 1)) ++n;
+    for (size_t at = xml.find("<" + name + " "); at != std::string::npos;
+         at = xml.find("<" + name + " ", at + 1))
+        ++n;
     return n;
 }
 
@@ -56,19 +57,21 @@ bool balanced(const std::string& xml) {
 TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]") {
     TempDir dir;
     // A high-frequency checker seen at a grazing angle: one sample per pixel aliases badly.
-    write_file(dir / "b.wsd",
-               "settings { width 16  height 12  supersamples 1  max_depth 3  seed 11 }\n"
-               "camera { position <0, 1, -5>  look_at <0, 0.4, 0>  fov 45 }\n"
-               "light area { position <1, 4, -2>  u <1.5, 0, 0>  v <0, 0, 1.5>  samples 2 }\n"
-               "plane { normal <0, 1, 0>  distance 0  material { texture checker { scale 0.13 } } }\n"
-               "sphere { center <0.6, 0.5, 0.5>  radius 0.5  material { color <0.8, 0.8, 0.8>  reflection 0.6 } }\n"
-               "box { min <-1.4, 0, 0>  max <-0.6, 0.9, 0.8>  material { color <0.2, 0.5, 0.9> } }\n"
-               // Reflection 0.1: below a bailout of 1/8, above 1/512.
-               "sphere { center <-0.1, 0.35, -0.9>  radius 0.35  material { color <0.9, 0.3, 0.2>  reflection 0.1 } }\n");
+    write_file(
+        dir / "b.wsd",
+        "settings { width 16  height 12  supersamples 1  max_depth 3  seed 11 }\n"
+        "camera { position <0, 1, -5>  look_at <0, 0.4, 0>  fov 45 }\n"
+        "light area { position <1, 4, -2>  u <1.5, 0, 0>  v <0, 0, 1.5>  samples 2 }\n"
+        "plane { normal <0, 1, 0>  distance 0  material { texture checker { scale 0.13 } } }\n"
+        "sphere { center <0.6, 0.5, 0.5>  radius 0.5  material { color <0.8, 0.8, 0.8>  reflection 0.6 } }\n"
+        "box { min <-1.4, 0, 0>  max <-0.6, 0.9, 0.8>  material { color <0.2, 0.5, 0.9> } }\n"
+        // Reflection 0.1: below a bailout of 1/8, above 1/512.
+        "sphere { center <-0.1, 0.35, -0.9>  radius 0.35  material { color <0.9, 0.3, 0.2>  reflection 0.1 } "
+        "}\n");
     const RunResult r = run_wsd(dir, "bench b.wsd --quick -o out --reference-light-samples 4 --threads 2");
     REQUIRE(r.status == 0);
     CHECK(r.out.find("supersamples") != std::string::npos);  // the table
-    CHECK_FALSE(r.err.empty());                               // progress
+    CHECK_FALSE(r.err.empty());                              // progress
 
     const auto rows = parse_csv(read_file(dir / "out/bench.csv"));
     REQUIRE(rows.size() > 1);
@@ -117,7 +120,8 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
     const std::string svg = read_file(dir / "out/bench.svg");
     CHECK(balanced(svg));
     CHECK(count_tags(svg, "path") == 6);
-    for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights", "bailout"})
+    for (const char* knob :
+         {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights", "bailout"})
         CHECK(svg.find(std::string(">") + knob + "</text>") != std::string::npos);  // legend
     CHECK(svg.find("Pareto") != std::string::npos);
 }

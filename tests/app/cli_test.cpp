@@ -1,8 +1,7 @@
 // The `wsd` command through the real binary: exit statuses for every case of wsd-cli.md, the
 // `check` ok line, `ast`, help and version, and that a failed command writes nothing.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <regex>
 #include <sstream>
 
@@ -28,12 +27,12 @@ TEST_CASE("wsd --version, --help and COMMAND --help succeed", "[cli]") {
 TEST_CASE("usage errors exit with 2", "[cli]") {
     TempDir dir;
     write_file(dir / "s.wsd", tiny_scene());
-    CHECK(run_wsd(dir, "").status == 2);                                   // no command
-    CHECK(run_wsd(dir, "frobnicate").status == 2);                         // unknown command
-    CHECK(run_wsd(dir, "render s.wsd --bogus").status == 2);               // unknown option
-    CHECK(run_wsd(dir, "render").status == 2);                             // missing argument
-    CHECK(run_wsd(dir, "render s.wsd --width").status == 2);               // missing value
-    CHECK(run_wsd(dir, "render s.wsd --width 0").status == 2);             // bad value
+    CHECK(run_wsd(dir, "").status == 2);                        // no command
+    CHECK(run_wsd(dir, "frobnicate").status == 2);              // unknown command
+    CHECK(run_wsd(dir, "render s.wsd --bogus").status == 2);    // unknown option
+    CHECK(run_wsd(dir, "render").status == 2);                  // missing argument
+    CHECK(run_wsd(dir, "render s.wsd --width").status == 2);    // missing value
+    CHECK(run_wsd(dir, "render s.wsd --width 0").status == 2);  // bad value
     CHECK(run_wsd(dir, "render s.wsd --width abc").status == 2);
     CHECK(run_wsd(dir, "render s.wsd --supersamples 0").status == 2);
     CHECK(run_wsd(dir, "render s.wsd --seed -1").status == 2);
@@ -45,7 +44,7 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
     const RunResult ext = run_wsd(dir, "render s.wsd -o out.xyz");
     CHECK(ext.status == 2);
     CHECK(ext.err.find("out.xyz") != std::string::npos);
-    CHECK(run_wsd(dir, "merge a.pfm").status == 2);                        // -o is required
+    CHECK(run_wsd(dir, "merge a.pfm").status == 2);  // -o is required
     CHECK(run_wsd(dir, "diff a.png").status == 2);
     // Nothing was written by any of them.
     const auto files = list_files(dir);
@@ -55,19 +54,23 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
 TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
     TempDir dir;
     write_file(dir / "s.wsd", tiny_scene());
-    write_file(dir / "frag.wsdi", "let red = material { color <1, 0, 0> }\nsphere { center <0,0,0> radius 1 material red }\n");
+    write_file(dir / "frag.wsdi",
+               "let red = material { color <1, 0, 0> }\nsphere { center <0,0,0> radius 1 material red }\n");
     const RunResult r = run_wsd(dir, "check s.wsd frag.wsdi");
     CHECK(r.status == 0);
     CHECK(r.err.empty());
-    const std::regex line("s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 lights, 2 materials\n"
-                          "frag\\.wsdi: ok \xE2\x80\x94 1 objects, 0 triangles, 0 lights, 1 materials\n");
+    const std::regex line(
+        "s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 lights, 2 materials\n"
+        "frag\\.wsdi: ok \xE2\x80\x94 1 objects, 0 triangles, 0 lights, 1 materials\n");
     CHECK(std::regex_match(r.out, line));
 }
 
-TEST_CASE("check: scene errors exit 1 with diagnostics, unreadable files 3, worst status wins", "[cli][check]") {
+TEST_CASE("check: scene errors exit 1 with diagnostics, unreadable files 3, worst status wins",
+          "[cli][check]") {
     TempDir dir;
     write_file(dir / "good.wsd", tiny_scene());
-    write_file(dir / "bad.wsd", "camera { position <0,0,-1> look_at <0,0,0> }\nsphere { center <0,0,0> radus 1 }\n");
+    write_file(dir / "bad.wsd",
+               "camera { position <0,0,-1> look_at <0,0,0> }\nsphere { center <0,0,0> radus 1 }\n");
     RunResult r = run_wsd(dir, "check bad.wsd");
     CHECK(r.status == 1);
     CHECK(r.out.empty());
@@ -96,7 +99,8 @@ TEST_CASE("check reads a scene from stdin with -", "[cli][check]") {
     write_file(dir / "s.wsd", tiny_scene());
     const std::string out = dir / "o.txt";
     const int raw = std::system(("cd " + shell_quote(dir.path().string()) + " && cat s.wsd | " +
-                                 shell_quote(WSD_BINARY) + " check - > o.txt 2>&1").c_str());
+                                 shell_quote(WSD_BINARY) + " check - > o.txt 2>&1")
+                                    .c_str());
     CHECK(WEXITSTATUS(raw) == 0);
     CHECK(read_file(out).find(": ok \xE2\x80\x94 2 objects") != std::string::npos);
 }
@@ -133,7 +137,8 @@ TEST_CASE("check --effects names the effects and the objects that call for each"
     std::string line;
     bool reflection = false, texture = false, soft = false;
     while (std::getline(lines, line)) {
-        if (line.find("reflection") != std::string::npos) reflection = line.find("sphere #2") != std::string::npos;
+        if (line.find("reflection") != std::string::npos)
+            reflection = line.find("sphere #2") != std::string::npos;
         if (line.find("textures") != std::string::npos) texture = line.find("plane #1") != std::string::npos;
         if (line.find("area") != std::string::npos) soft = true;
     }

@@ -1,7 +1,6 @@
 // `wsd diff` through the real binary, on 8-bit images written byte by byte (TGA) and on
 // renders: identical images, a known constant offset, the heat map, and every failure status.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "app_test_util.h"

@@ -4,7 +4,6 @@
 // message at the right place: never a crash, an internal error (4) or a hang. The unit tests of
 // tests/lang check the same inputs stage by stage; these check the whole command.
 #include <catch2/catch.hpp>
-
 #include <chrono>
 #include <cstdlib>
 #include <random>
@@ -72,13 +71,15 @@ TEST_CASE("hostile: NUL bytes and invalid UTF-8 are errors at that byte", "[host
     expect_error(check_text(dir, camera + std::string("let s = \"a\0b\"\n", 14)), "2:11", "invalid NUL byte");
     expect_error(check_text(dir, camera + "let s = \"caf\xe9\"\n"), "2:13", "invalid UTF-8 byte 0xe9");
     expect_error(check_text(dir, camera + "// \xc0\xaf overlong\n"), "2:4", "invalid UTF-8 byte 0xc0");
-    expect_error(check_text(dir, camera + "let x = \xed\xa0\x80\n"), "2:9", "invalid UTF-8 byte 0xed");  // a surrogate
+    expect_error(check_text(dir, camera + "let x = \xed\xa0\x80\n"), "2:9",
+                 "invalid UTF-8 byte 0xed");  // a surrogate
 }
 
 TEST_CASE("hostile: 10,000 nested parentheses or blocks are one error", "[hostile]") {
     TempDir dir;
     const std::string limit = "nesting too deep (the limit is 256 nested blocks and expressions)";
-    RunResult r = check_text(dir, camera + "let x = " + repeat("(", 10'000) + "1" + repeat(")", 10'000) + "\n");
+    RunResult r =
+        check_text(dir, camera + "let x = " + repeat("(", 10'000) + "1" + repeat(")", 10'000) + "\n");
     expect_error(r, "2:265", limit);
     CHECK(r.err.find("error:", r.err.find("error:") + 1) == std::string::npos);  // only one
 
@@ -104,7 +105,8 @@ TEST_CASE("hostile: an unterminated string or comment at the end of the file", "
 TEST_CASE("hostile: a loop of 10^12 iterations is refused before it starts", "[hostile]") {
     TempDir dir;
     const auto start = std::chrono::steady_clock::now();
-    const RunResult r = check_text(dir, camera + "for i in 0 .. 1e12 { sphere { center <i, 0, 0>  radius 1 } }\n");
+    const RunResult r =
+        check_text(dir, camera + "for i in 0 .. 1e12 { sphere { center <i, 0, 0>  radius 1 } }\n");
     expect_error(r, "2:10", "loop of 1000000000000 iterations exceeds the limit");
     CHECK(seconds_since(start) < 10.0);  // refused, not run: well under a second unloaded
 }

@@ -1,7 +1,6 @@
 // Unit tests of the library-like parts of app/: image metrics (RMSE, PSNR, SSIM, heat map), the
 // tile file format, and the SVG plot writer with its Pareto front.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <string>
 
@@ -60,7 +59,8 @@ TEST_CASE("a constant offset gives that offset as RMSE and max error", "[metrics
 TEST_CASE("SSIM falls for structural damage and works below the window size", "[metrics]") {
     const DisplayImage a = pattern(32, 32);
     DisplayImage noisy = a;
-    for (size_t i = 0; i < noisy.rgb.size(); ++i) noisy.rgb[i] = static_cast<double>(i * 2654435761u % 1000) / 1000.0;
+    for (size_t i = 0; i < noisy.rgb.size(); ++i)
+        noisy.rgb[i] = static_cast<double>(i * 2654435761u % 1000) / 1000.0;
     CHECK(ssim(a, noisy) < 0.5);
     const DisplayImage small = pattern(3, 2);
     CHECK(ssim(small, small) == 1.0);
@@ -83,8 +83,8 @@ TEST_CASE("to_display clamps, encodes, and quantizes 8-bit values", "[metrics]")
 
 TEST_CASE("the heat map is black where equal and white at the largest error", "[metrics]") {
     DisplayImage a = pattern(4, 4), b = a;
-    b.rgb[3 * 5 + 1] += 0.2;   // pixel 5
-    b.rgb[3 * 9] += 0.1;       // pixel 9
+    b.rgb[3 * 5 + 1] += 0.2;  // pixel 5
+    b.rgb[3 * 9] += 0.1;      // pixel 9
     double scale = 0;
     const DisplayImage heat = error_heatmap(a, b, scale);
     CHECK(scale == Approx(0.2));
@@ -152,7 +152,7 @@ TEST_CASE("malformed tile files are refused with a reason", "[tiles]") {
     std::string error;
     CHECK_FALSE(decode_tile("", f, m, error));
     CHECK_FALSE(decode_tile("P6\n2 2\n255\n", f, m, error));
-    CHECK_FALSE(decode_tile(good.substr(0, 20), f, m, error));             // truncated floats
+    CHECK_FALSE(decode_tile(good.substr(0, 20), f, m, error));  // truncated floats
     CHECK(error.find("truncated") != std::string::npos);
     CHECK_FALSE(decode_tile(good.substr(0, good.find("\nWSDTILE")), f, m, error));  // a plain PFM
     CHECK(error.find("WSDTILE") != std::string::npos);
@@ -176,9 +176,10 @@ TEST_CASE("the Pareto front keeps exactly the undominated points", "[svg]") {
 }
 
 TEST_CASE("the SVG plot is balanced XML with one path per series", "[svg]") {
-    std::vector<PlotSeries> series{{"super<samples>", {{0.01, 0.1, "1"}, {0.04, 0.05, "4"}, {0.16, 0.0, "16"}}},
-                                   {"depth & more", {{0.02, 0.2, "0"}, {0.03, 0.08, "1"}}},
-                                   {"third", {{0.5, 0.01, "x"}}}};
+    std::vector<PlotSeries> series{
+        {"super<samples>", {{0.01, 0.1, "1"}, {0.04, 0.05, "4"}, {0.16, 0.0, "16"}}},
+        {"depth & more", {{0.02, 0.2, "0"}, {0.03, 0.08, "1"}}},
+        {"third", {{0.5, 0.01, "x"}}}};
     const std::string svg = svg_log_log_plot(series, {"t \"title\"", "time", "error"});
     CHECK(count_tags(svg, "path") == 3);
     CHECK(count_tags(svg, "polyline") == 1);

@@ -1,9 +1,8 @@
 // `wsd render` and `wsd merge` through the real binary: outputs and overrides, statistics,
 // atomic output (nothing partial after any failure), interruption, and tiles that merge into
 // exactly the single render, with every merge error naming the tile at fault.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <sstream>
 
 #include "app_test_util.h"
@@ -23,7 +22,8 @@ std::pair<int, int> pfm_size(const std::string& bytes) {
 
 bool no_temporaries(const TempDir& dir) {
     const auto files = list_files(dir);
-    return std::none_of(files.begin(), files.end(), [](const std::string& f) { return f.find(".tmp") != std::string::npos; });
+    return std::none_of(files.begin(), files.end(),
+                        [](const std::string& f) { return f.find(".tmp") != std::string::npos; });
 }
 
 }  // namespace
@@ -38,8 +38,9 @@ TEST_CASE("render writes ./NAME.png by default and honours -o and the overrides"
     CHECK(r.err.empty());
     CHECK(read_file(dir / "s.png").rfind("\x89PNG", 0) == 0);
 
-    r = run_wsd(dir, "render scenes/s.wsd -o small.pfm --width 8 --height 6 --supersamples 1 --max-depth 0 "
-                     "--light-samples 1 --seed 9 --threads 1 --no-bvh --quiet");
+    r = run_wsd(dir,
+                "render scenes/s.wsd -o small.pfm --width 8 --height 6 --supersamples 1 --max-depth 0 "
+                "--light-samples 1 --seed 9 --threads 1 --no-bvh --quiet");
     REQUIRE(r.status == 0);
     CHECK(pfm_size(read_file(dir / "small.pfm")) == std::make_pair(8, 6));
     for (const char* ext : {"hdr", "bmp", "tga", "jpg"}) {
@@ -53,7 +54,8 @@ TEST_CASE("render reads the scene from stdin", "[render]") {
     TempDir dir;
     write_file(dir / "s.wsd", tiny_scene());
     const int raw = std::system(("cd " + shell_quote(dir.path().string()) + " && cat s.wsd | " +
-                                 shell_quote(WSD_BINARY) + " render - -o in.pfm --quiet 2>err.txt").c_str());
+                                 shell_quote(WSD_BINARY) + " render - -o in.pfm --quiet 2>err.txt")
+                                    .c_str());
     CHECK(WEXITSTATUS(raw) == 0);
     CHECK(pfm_size(read_file(dir / "in.pfm")) == std::make_pair(16, 16));
 }
@@ -77,10 +79,10 @@ TEST_CASE("--stats-json writes the named keys", "[render]") {
     const RunResult r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json stats.json");
     REQUIRE(r.status == 0);
     const std::string json = read_file(dir / "stats.json");
-    for (const char* key : {"camera_rays", "shadow_rays", "reflection_rays", "refraction_rays", "triangle_tests",
-                            "triangle_hits", "sphere_tests", "sphere_hits", "box_tests", "parse_seconds",
-                            "build_seconds", "render_seconds", "mrays_per_second", "peak_memory_bytes",
-                            "nonfinite_samples", "effects"})
+    for (const char* key :
+         {"camera_rays", "shadow_rays", "reflection_rays", "refraction_rays", "triangle_tests",
+          "triangle_hits", "sphere_tests", "sphere_hits", "box_tests", "parse_seconds", "build_seconds",
+          "render_seconds", "mrays_per_second", "peak_memory_bytes", "nonfinite_samples", "effects"})
         CHECK(json.find(std::string("\"") + key + "\":") != std::string::npos);
     CHECK(json.find("\"camera_rays\": 1024,") != std::string::npos);  // 16×16 pixels × 4 supersamples
     CHECK(json.find("\"nonfinite_samples\": 0,") != std::string::npos);
@@ -134,7 +136,9 @@ TEST_CASE("four tiles merge into exactly the single render", "[tiles]") {
     REQUIRE(run_wsd(dir, "render s.wsd -o whole.pfm --quiet --threads 1").status == 0);
     for (int i = 1; i <= 4; ++i) {
         const std::string tile = "t" + std::to_string(i) + ".pfm";
-        REQUIRE(run_wsd(dir, "render s.wsd --tile " + std::to_string(i) + "/4 -o " + tile + " --quiet").status == 0);
+        REQUIRE(
+            run_wsd(dir, "render s.wsd --tile " + std::to_string(i) + "/4 -o " + tile + " --quiet").status ==
+            0);
         const int y0 = (i - 1) * 18 / 4, y1 = i * 18 / 4;
         CHECK(pfm_size(read_file(dir / tile)) == std::make_pair(18, y1 - y0));
     }
@@ -148,8 +152,9 @@ TEST_CASE("four tiles merge into exactly the single render", "[tiles]") {
     // Regions: a 2×2 grid of rectangles merges just as well; the default tile name is used.
     for (const char* region : {"0,0,7,9", "7,0,18,9", "0,9,7,18", "7,9,18,18"})
         REQUIRE(run_wsd(dir, std::string("render s.wsd --quiet --region ") + region).status == 0);
-    r = run_wsd(dir, "merge s.region-0-0-7-9.pfm s.region-7-0-18-9.pfm s.region-0-9-7-18.pfm "
-                     "s.region-7-9-18-18.pfm -o grid.png");
+    r = run_wsd(dir,
+                "merge s.region-0-0-7-9.pfm s.region-7-0-18-9.pfm s.region-0-9-7-18.pfm "
+                "s.region-7-9-18-18.pfm -o grid.png");
     REQUIRE(r.status == 0);
     CHECK(read_file(dir / "grid.png") == read_file(dir / "whole.png"));
 }
@@ -159,7 +164,9 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
     write_file(dir / "s.wsd", tiny_scene(5, 16));
     write_file(dir / "other.wsd", tiny_scene(5, 16) + "// a different scene text\n");
     for (int i = 1; i <= 4; ++i)
-        REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile " + std::to_string(i) + "/4 -o t" + std::to_string(i) + ".pfm").status == 0);
+        REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile " + std::to_string(i) + "/4 -o t" +
+                                 std::to_string(i) + ".pfm")
+                    .status == 0);
     REQUIRE(run_wsd(dir, "render other.wsd --quiet --tile 2/4 -o foreign.pfm").status == 0);
     REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile 2/4 --seed 6 -o seeded.pfm").status == 0);
     REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile 2/4 --supersamples 1 -o cheap.pfm").status == 0);

@@ -1,7 +1,6 @@
 // Diagnostics tests: the exact clang-style text (location, source line, caret and ~, tabs,
 // notes, help, include chains, the error limit) and the "did you mean" matcher.
 #include <catch2/catch.hpp>
-
 #include <sstream>
 #include <string>
 
@@ -166,14 +165,17 @@ TEST_CASE("invalid bytes are shown as replacement characters; wide line numbers 
           "[diagnostics]") {
     std::string text;
     for (int i = 0; i < 123'455; ++i) text += '\n';
-    text += "a\xFF" "b";
+    text +=
+        "a\xFF"
+        "b";
     SourceManager sources;
     const uint32_t f = sources.add("t.wsd", text);
     Diagnostics diags;
     diags.error({f, 123'456, 123'457}, "invalid UTF-8 byte 0xff");
     CHECK(format_diagnostics(diags, sources) ==
           "t.wsd:123456:2: error: invalid UTF-8 byte 0xff\n"
-          "123456 | a\xEF\xBF\xBD" "b\n"
+          "123456 | a\xEF\xBF\xBD"
+          "b\n"
           "       |  ^\n");
 }
 

@@ -3,6 +3,7 @@
 // lang::load_scene and must report exactly those. NAME.ast beside NAME.wsd pins print_ast.
 // WSD_UPDATE_AST=1 in the environment rewrites the .ast files instead of comparing them.
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
@@ -11,8 +12,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <catch2/catch.hpp>
 
 #include "lang/load.h"
 #include "lang/parser.h"
@@ -56,15 +55,21 @@ Expected read_expectations(const std::string& text) {
         if (end == std::string::npos) end = text.size();
         const std::string line = text.substr(begin, end - begin);
         std::vector<std::smatch> marks;
-        for (auto it = std::sregex_iterator(line.begin(), line.end(), marker); it != std::sregex_iterator(); ++it)
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), marker); it != std::sregex_iterator();
+             ++it)
             marks.push_back(*it);
         for (size_t i = 0; i < marks.size(); ++i) {
             const size_t from = static_cast<size_t>(marks[i].position(0) + marks[i].length(0));
-            const size_t to = i + 1 < marks.size() ? static_cast<size_t>(marks[i + 1].position(0)) : line.size();
+            const size_t to =
+                i + 1 < marks.size() ? static_cast<size_t>(marks[i + 1].position(0)) : line.size();
             std::string message = line.substr(from, to - from);
-            while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+            while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back())))
+                message.pop_back();
             const std::string kind = marks[i][1];
-            auto& list = kind == "error" ? e.errors : kind == "warning" ? e.warnings : kind == "note" ? e.notes : e.help;
+            auto& list = kind == "error"     ? e.errors
+                         : kind == "warning" ? e.warnings
+                         : kind == "note"    ? e.notes
+                                             : e.help;
             list.push_back(message);
         }
         if (end < text.size() && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n') ++end;
@@ -75,12 +80,14 @@ Expected read_expectations(const std::string& text) {
 
 // "L:C: message" in the golden file itself, "FILE:L:C: message" elsewhere (FILE relative to
 // the golden file's directory).
-std::string describe(const SourceManager& sources, Span span, const std::string& message, const fs::path& golden) {
+std::string describe(const SourceManager& sources, Span span, const std::string& message,
+                     const fs::path& golden) {
     if (span.file >= sources.size()) return "?:?: " + message;
     const LineCol lc = sources.line_col(span.file, span.begin);
     const fs::path file = fs::path(sources.file(span.file).path).lexically_normal();
     std::string where;
-    if (file != golden.lexically_normal()) where = file.lexically_relative(golden.parent_path()).generic_string() + ":";
+    if (file != golden.lexically_normal())
+        where = file.lexically_relative(golden.parent_path()).generic_string() + ":";
     return where + std::to_string(lc.line) + ":" + std::to_string(lc.column) + ": " + message;
 }
 
@@ -97,9 +104,12 @@ void check_golden(const fs::path& path) {
 
     Expected actual;
     for (const Diagnostic& d : diags.all()) {
-        if (d.severity == Severity::Error) actual.errors.push_back(describe(sources, d.span, d.message, path));
-        if (d.severity == Severity::Warning) actual.warnings.push_back(describe(sources, d.span, d.message, path));
-        for (const Note& n : notes_with_includes(d)) actual.notes.push_back(describe(sources, n.span, n.message, path));
+        if (d.severity == Severity::Error)
+            actual.errors.push_back(describe(sources, d.span, d.message, path));
+        if (d.severity == Severity::Warning)
+            actual.warnings.push_back(describe(sources, d.span, d.message, path));
+        for (const Note& n : notes_with_includes(d))
+            actual.notes.push_back(describe(sources, n.span, n.message, path));
         for (const std::string& h : d.help) actual.help.push_back(h);
     }
     INFO(format_diagnostics(diags, sources));
@@ -131,6 +141,8 @@ TEST_CASE("golden files report exactly the diagnostics written in them", "[golde
     REQUIRE(!files.empty());
     const fs::path root = fs::path(WSD_SOURCE_DIR) / "tests" / "golden";
     for (const fs::path& path : files) {
-        DYNAMIC_SECTION(path.lexically_relative(root).generic_string()) { check_golden(path); }
+        DYNAMIC_SECTION(path.lexically_relative(root).generic_string()) {
+            check_golden(path);
+        }
     }
 }

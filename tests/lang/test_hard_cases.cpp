@@ -4,9 +4,10 @@
 // lang::load_scene, the whole front end that `wsd check` and `wsd render` run; an error row must
 // leave no scene (so nothing is rendered) and report FILE:LINE:COL with the message.
 // Where the reference and docs/wsd-language.md differ, the language reference wins.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <clocale>
 #include <cmath>
 #include <cstdlib>
@@ -15,8 +16,6 @@
 #include <locale>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "eval_helpers.h"
 #include "render/renderer.h"
@@ -53,7 +52,8 @@ Outcome load(const std::string& text, const std::string& path = "r54.wsd", bool 
     for (const Diagnostic& d : diags.all()) {
         if (d.severity != Severity::Error) continue;
         out.errors.push_back(locate(sources, d.span) + ": " + d.message);
-        for (const Note& n : notes_with_includes(d)) out.notes.push_back(locate(sources, n.span) + ": " + n.message);
+        for (const Note& n : notes_with_includes(d))
+            out.notes.push_back(locate(sources, n.span) + ": " + n.message);
         for (const std::string& h : d.help) out.help.push_back(h);
     }
     return out;
@@ -126,7 +126,8 @@ TEST_CASE("R54: malformed input table", "[hard-cases][R54]") {
     check_rows({
         {"empty file", "", "r54.wsd:1:1", "missing camera"},
         {"only comments", "// one\n/* two */\n", "r54.wsd:1:1", "missing camera"},
-        {"unterminated block comment", c + "let x = 1 /* open\nto the end", "r54.wsd:2:11", "unterminated block comment"},
+        {"unterminated block comment", c + "let x = 1 /* open\nto the end", "r54.wsd:2:11",
+         "unterminated block comment"},
         {"nested comments: the outer opening", c + "let x = 1\n  /* outer /* inner */\n", "r54.wsd:3:3",
          "unterminated block comment"},
         {"string to the end of the file", c + "let s = \"abc", "r54.wsd:2:9", "unterminated string"},
@@ -135,10 +136,11 @@ TEST_CASE("R54: malformed input table", "[hard-cases][R54]") {
         {"-1e999", c + "let x = -1e999\n", "r54.wsd:2:10", "number '1e999' is too large for a double"},
         {"1e309", c + "let x = 1e309\n", "r54.wsd:2:9", "number '1e309' is too large for a double"},
         // Geometry is single precision where it is stored as float: 1e39 fits a double, not a float.
-        {"1e39 in a mesh", c + "mesh { vertices [<1e39, 0, 0>, <0, 1, 0>, <0, 0, 1>] faces [<0, 1, 2>] material { } }\n",
+        {"1e39 in a mesh",
+         c + "mesh { vertices [<1e39, 0, 0>, <0, 1, 0>, <0, 0, 1>] faces [<0, 1, 2>] material { } }\n",
          "r54.wsd:2:18", "vertex 0 is too large for single precision"},
-        {"1e39 as a sphere centre", c + "sphere { center <1e39, 0, 0>  radius 1  material { } }\n", "r54.wsd:2:1",
-         "sphere is out of range after its transform"},
+        {"1e39 as a sphere centre", c + "sphere { center <1e39, 0, 0>  radius 1  material { } }\n",
+         "r54.wsd:2:1", "sphere is out of range after its transform"},
         {"nan", c + "let x = nan\n", "r54.wsd:2:9", "unknown name 'nan'"},
         {"NaN", c + "let x = NaN\n", "r54.wsd:2:9", "unknown name 'NaN'"},
         {"inf", c + "let x = inf\n", "r54.wsd:2:9", "unknown name 'inf'"},
@@ -159,15 +161,18 @@ TEST_CASE("R54: malformed input table", "[hard-cases][R54]") {
         {"log(0)", c + "let x = log(0)\n", "r54.wsd:2:9", "'log' of a number that is not positive"},
         {"exp(1000)", c + "let x = exp(1000)\n", "r54.wsd:2:9", "result of 'exp' is not a finite number"},
         {"pow(-8, 1/3)", c + "let x = pow(-8, 1/3)\n", "r54.wsd:2:9", "has no real value"},
-        {"normalize(<0,0,0>)", c + "let x = normalize(<0,0,0>)\n", "r54.wsd:2:9", "'normalize' of a zero vector"},
-        {"a loop of 1e9 iterations", c + "for i in 0 .. 1e9 { sphere { center <i, 0, 0>  radius 1  material { } } }\n",
-         "r54.wsd:2:10", "loop of 1000000000 iterations exceeds the limit of 100000000"},
+        {"normalize(<0,0,0>)", c + "let x = normalize(<0,0,0>)\n", "r54.wsd:2:9",
+         "'normalize' of a zero vector"},
+        {"a loop of 1e9 iterations",
+         c + "for i in 0 .. 1e9 { sphere { center <i, 0, 0>  radius 1  material { } } }\n", "r54.wsd:2:10",
+         "loop of 1000000000 iterations exceeds the limit of 100000000"},
         {"99999999999 as width", c + "settings { width 99999999999 }\n", "r54.wsd:2:18",
          "'width' must be an integer from 1 to 100000, found 99999999999"},
         {"99999999999 as seed", c + "settings { seed 99999999999 }\n", "r54.wsd:2:17",
          "'seed' must be an integer from 0 to 4294967295, found 99999999999"},
         {"99999999999 as a mesh index",
-         c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 99999999999>]  material { } }\n",
+         c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 99999999999>]  material { } "
+             "}\n",
          "r54.wsd:2:58", "face 0: index 99999999999 is out of range (the mesh has 3 vertices)"},
         {"99999999999 as a loop bound", c + "for i in 0 .. 99999999999 { }\n", "r54.wsd:2:10",
          "loop of 99999999999 iterations exceeds the limit"},
@@ -183,24 +188,29 @@ TEST_CASE("R54: malformed input table", "[hard-cases][R54]") {
         {"truncated in a keyword", c + "sphe", "r54.wsd:2:1", "expected a statement, found 'sphe'"},
         {"10,000 nested parentheses", c + "let x = " + repeat("(", 10'000) + "1" + repeat(")", 10'000) + "\n",
          "r54.wsd:2:265", "nesting too deep (the limit is 256 nested blocks and expressions)"},
-        {"100,000 nested blocks", c + repeat("if true { ", 100'000) + repeat("}", 100'000) + "\n", "r54.wsd:2:2564",
-         "nesting too deep (the limit is 256 nested blocks and expressions)"},
-        {"non-ASCII letters in a name", c + "let größe = 1\n", "r54.wsd:2:7", "invalid character 'ö' in name 'größe'"},
+        {"100,000 nested blocks", c + repeat("if true { ", 100'000) + repeat("}", 100'000) + "\n",
+         "r54.wsd:2:2564", "nesting too deep (the limit is 256 nested blocks and expressions)"},
+        {"non-ASCII letters in a name", c + "let größe = 1\n", "r54.wsd:2:7",
+         "invalid character 'ö' in name 'größe'"},
         {"unknown escape", c + "let s = \"a\\qb\"\n", "r54.wsd:2:11", "unknown escape sequence '\\q'"},
-        {"undefined reference", c + "let radius = 1\nlet y = raduis\n", "r54.wsd:3:9", "unknown name 'raduis'"},
+        {"undefined reference", c + "let radius = 1\nlet y = raduis\n", "r54.wsd:3:9",
+         "unknown name 'raduis'"},
         {"a 2 kB file name", c + "include \"" + std::string(2000, 'f') + ".wsdi\"\n", "r54.wsd:2:9",
          "cannot read include file '" + std::string(2000, 'f') + ".wsdi'"},
-        {"a 2 kB name", c + "let " + std::string(2000, 'n') + " = 1\nlet y = " + std::string(1999, 'n') + "m\n",
+        {"a 2 kB name",
+         c + "let " + std::string(2000, 'n') + " = 1\nlet y = " + std::string(1999, 'n') + "m\n",
          "r54.wsd:3:9", "unknown name '" + std::string(1999, 'n') + "m'"},
     });
 }
 
-TEST_CASE("R54: invalid UTF-8 in a name, a string or a comment is an error at that byte", "[hard-cases][R54]") {
+TEST_CASE("R54: invalid UTF-8 in a name, a string or a comment is an error at that byte",
+          "[hard-cases][R54]") {
     // 0xFF never occurs in UTF-8; C0 80 is an overlong NUL (each byte is reported); 0x80 alone is
     // a continuation byte without a lead. The message gives the byte offset, the location line:col.
     for (const std::string bad : {"\xFF", "\xC0\x80", "\x80"}) {
         for (const std::string prefix : {"let a", "let s = \"a", "// a"}) {
-            const std::string line = prefix + bad + (prefix[0] == 'l' && prefix[4] == 'a' ? "c = 1" : "\"") + "\n";
+            const std::string line =
+                prefix + bad + (prefix[0] == 'l' && prefix[4] == 'a' ? "c = 1" : "\"") + "\n";
             const std::string at = "r54.wsd:2:" + std::to_string(prefix.size() + 1);
             char hex[8];
             std::snprintf(hex, sizeof hex, "0x%02x", static_cast<unsigned char>(bad[0]));
@@ -214,8 +224,8 @@ TEST_CASE("R54: invalid UTF-8 in a name, a string or a comment is an error at th
 
 TEST_CASE("R54: the number forms of the spec are accepted; -0 and --1 are unary minus", "[hard-cases][R54]") {
     const std::vector<std::pair<std::string, double>> numbers = {
-        {"12", 12}, {"1.5", 1.5}, {".5", 0.5}, {"2.", 2}, {"1e-3", 1e-3}, {"6.02E23", 6.02e23},
-        {"1e-400", 0},  // underflow is 0 (the language reference)
+        {"12", 12},     {"1.5", 1.5},         {".5", 0.5},   {"2.", 2},
+        {"1e-3", 1e-3}, {"6.02E23", 6.02e23}, {"1e-400", 0},  // underflow is 0 (the language reference)
         {"--1", 1},     {"-0", -0.0}};
     for (const auto& [text, expected] : numbers) {
         INFO(text);
@@ -231,10 +241,18 @@ TEST_CASE("R54: -0 does not flip a normal, a frame or a seam", "[hard-cases][R54
     // The same scene with 0 and with -0 in every place a sign could matter renders the same pixels.
     const auto scene = [](const std::string& z) {
         return "settings { width 24  height 16 }\n"
-               "camera { position <" + z + ", 1, -4>  look_at <" + z + ", 1, " + z + ">  up <" + z + ", 1, " + z + "> }\n"
-               "light point { position <" + z + ", 5, -3> }\n"
-               "plane { normal <" + z + ", 1, " + z + ">  distance " + z + "  material { texture checker { } } }\n"
-               "sphere { center <" + z + ", 1, " + z + ">  radius 1  rotate <" + z + ", " + z + ", " + z + ">\n"
+               "camera { position <" +
+               z + ", 1, -4>  look_at <" + z + ", 1, " + z + ">  up <" + z + ", 1, " + z +
+               "> }\n"
+               "light point { position <" +
+               z +
+               ", 5, -3> }\n"
+               "plane { normal <" +
+               z + ", 1, " + z + ">  distance " + z +
+               "  material { texture checker { } } }\n"
+               "sphere { center <" +
+               z + ", 1, " + z + ">  radius 1  rotate <" + z + ", " + z + ", " + z +
+               ">\n"
                "         material { texture perlin { kind marble }  bump perlin { }  reflection 0.3 } }\n";
     };
     const Outcome plus = load(scene("0"));
@@ -276,10 +294,12 @@ TEST_CASE("R54: independent errors are all reported, in source order, up to the 
     // Syntax errors: the parser recovers at the next statement.
     Outcome out = load(camera + "let = 1\nlet b = )\nsphere { radius 1 2 }\n");
     CHECK(out.errors.size() == 3);
-    for (size_t i = 0; i < out.errors.size(); ++i) CHECK(out.errors[i].rfind("r54.wsd:" + std::to_string(i + 2) + ":", 0) == 0);
+    for (size_t i = 0; i < out.errors.size(); ++i)
+        CHECK(out.errors[i].rfind("r54.wsd:" + std::to_string(i + 2) + ":", 0) == 0);
     CHECK_FALSE(out.loaded);
     // Runtime and block errors: evaluation goes on after each.
-    out = load(camera + "let a = 1 / 0\nlet b = sqrt(-1)\nsphere { center <0, 0, 0>  radius -1  material { } }\n");
+    out = load(camera +
+               "let a = 1 / 0\nlet b = sqrt(-1)\nsphere { center <0, 0, 0>  radius -1  material { } }\n");
     CHECK(out.errors == std::vector<std::string>{"r54.wsd:2:11: division by zero",
                                                  "r54.wsd:3:9: 'sqrt' of a negative number (-1)",
                                                  "r54.wsd:4:35: 'radius' must be > 0, found -1"});
@@ -291,9 +311,9 @@ TEST_CASE("R54: independent errors are all reported, in source order, up to the 
 
 TEST_CASE("R54: a NUL byte does not truncate the file", "[hard-cases][R54]") {
     const Outcome out = load(camera + std::string("let a = 1\0\nlet = 2\n", 19));
-    CHECK(out.errors == std::vector<std::string>{
-                            "r54.wsd:2:10: invalid NUL byte (byte offset " + std::to_string(camera.size() + 9) + ")",
-                            "r54.wsd:3:5: expected a name after 'let', found '='"});
+    CHECK(out.errors == std::vector<std::string>{"r54.wsd:2:10: invalid NUL byte (byte offset " +
+                                                     std::to_string(camera.size() + 9) + ")",
+                                                 "r54.wsd:3:5: expected a name after 'let', found '='"});
 }
 
 TEST_CASE("R54: a UTF-8 byte-order mark is skipped", "[hard-cases][R54]") {
@@ -302,13 +322,15 @@ TEST_CASE("R54: a UTF-8 byte-order mark is skipped", "[hard-cases][R54]") {
     CHECK(load("\xEF\xBB\xBF" + camera).loaded);
 }
 
-TEST_CASE("R54: LF, CRLF and lone CR each count lines; tabs and code points count one column", "[hard-cases][R54]") {
+TEST_CASE("R54: LF, CRLF and lone CR each count lines; tabs and code points count one column",
+          "[hard-cases][R54]") {
     for (const std::string eol : {"\n", "\r\n", "\r"}) {
         const Outcome out = load("camera { position <0, 0, -5>  look_at <0, 0, 0> }" + eol + "// two" + eol +
                                  "let x = 1 / 0" + eol);
         CHECK(out.errors == std::vector<std::string>{"r54.wsd:3:11: division by zero"});
     }
-    CHECK(load(camera + "\t\tlet x = \t1 / 0\n").errors == std::vector<std::string>{"r54.wsd:2:14: division by zero"});
+    CHECK(load(camera + "\t\tlet x = \t1 / 0\n").errors ==
+          std::vector<std::string>{"r54.wsd:2:14: division by zero"});
     CHECK(load(camera + "let s = \"größe\" + 1\n").errors ==
           std::vector<std::string>{"r54.wsd:2:17: operator '+' cannot combine string and number"});
 }
@@ -319,7 +341,8 @@ TEST_CASE("R54: include cycles, missing includes and missing textures name the p
     dir.write("a.wsdi", "include \"b.wsdi\"\n");
     dir.write("b.wsdi", "\ninclude \"a.wsdi\"\n");
     Outcome out = load_file(dir.write("main.wsd", camera + "include \"a.wsdi\"\n"));
-    CHECK(out.errors == std::vector<std::string>{root + "b.wsdi:2:9: include cycle: a.wsdi → b.wsdi → a.wsdi"});
+    CHECK(out.errors ==
+          std::vector<std::string>{root + "b.wsdi:2:9: include cycle: a.wsdi → b.wsdi → a.wsdi"});
     CHECK_FALSE(out.loaded);
 
     out = load_file(dir.write("self.wsd", camera + "include \"self.wsd\"\n"));
@@ -330,8 +353,9 @@ TEST_CASE("R54: include cycles, missing includes and missing textures name the p
                                                  (dir.path / "sub/../none/x.wsdi").string() +
                                                  "': no such file or directory"});
 
-    out = load_file(dir.write("sub/texture.wsd", camera + "sphere { center <0, 0, 0>  radius 1\n"
-                                                          "  material { texture image \"tex/none.png\" } }\n"));
+    out =
+        load_file(dir.write("sub/texture.wsd", camera + "sphere { center <0, 0, 0>  radius 1\n"
+                                                        "  material { texture image \"tex/none.png\" } }\n"));
     INFO(Catch::Detail::stringify(out.errors));
     REQUIRE(out.errors.size() == 1);
     CHECK(out.errors[0].rfind(root + "sub/texture.wsd:3:28: ", 0) == 0);
@@ -344,8 +368,8 @@ TEST_CASE("R54: a 10 MB line and a long list are handled", "[hard-cases][R54][la
     const size_t scale = sanitized() ? 10 : 1;
     const std::string sphere = "sphere { center <1, 2, 3>  radius 1  material m }  ";
     const size_t spheres = 10'000'000 / sphere.size() / scale;
-    Outcome out = load(camera + "let m = material { }  " + repeat(sphere, spheres) + "sphere { radus 1 }\n", "r54.wsd",
-                       false);
+    Outcome out = load(camera + "let m = material { }  " + repeat(sphere, spheres) + "sphere { radus 1 }\n",
+                       "r54.wsd", false);
     const size_t column = 23 + spheres * sphere.size() + 9;
     INFO(Catch::Detail::stringify(out.errors));
     REQUIRE_FALSE(out.errors.empty());
@@ -355,8 +379,9 @@ TEST_CASE("R54: a 10 MB line and a long list are handled", "[hard-cases][R54][la
     // objects. 10^7 elements also finish (wsd check: about 11 s and 2 GB, some 200 bytes per element
     // of the list literal), too much for the suite; 10^6 here, 10^5 under the sanitizers.
     const size_t elements = 1'000'000 / scale;
-    out = load(camera + "let xs = [" + repeat("1,", elements) + "]\nlet total = 0\n"
-                        "for x in xs { let y = x + total }\nlet n = len(xs) / 0\n",
+    out = load(camera + "let xs = [" + repeat("1,", elements) +
+                   "]\nlet total = 0\n"
+                   "for x in xs { let y = x + total }\nlet n = len(xs) / 0\n",
                "r54.wsd", false);
     CHECK(out.errors == std::vector<std::string>{"r54.wsd:5:17: division by zero"});
 }
@@ -368,14 +393,16 @@ TEST_CASE("R54: numbers parse and print the same under a comma-decimal locale", 
     };
     const std::string c_locale = std::setlocale(LC_ALL, nullptr);
     const std::locale cpp_locale = std::locale::global(std::locale(std::locale::classic(), new comma));
-    if (!std::setlocale(LC_ALL, "de_DE.UTF-8")) WARN("de_DE.UTF-8 is not installed: only the C++ locale is set");
+    if (!std::setlocale(LC_ALL, "de_DE.UTF-8"))
+        WARN("de_DE.UTF-8 is not installed: only the C++ locale is set");
     const auto v = value_of("1.5");
     const Outcome out = load(camera + "settings { max_depth 2.5 }\n");
     std::setlocale(LC_ALL, c_locale.c_str());
     std::locale::global(cpp_locale);
     REQUIRE(v);
     CHECK(v->number() == 1.5);
-    CHECK(out.errors == std::vector<std::string>{"r54.wsd:2:22: 'max_depth' must be an integer from 0 to 256, found 2.5"});
+    CHECK(out.errors ==
+          std::vector<std::string>{"r54.wsd:2:22: 'max_depth' must be an integer from 0 to 256, found 2.5"});
 }
 
 // R54 rows covered elsewhere as well: the end-to-end `wsd check` status and output for empty,
@@ -390,34 +417,40 @@ TEST_CASE("R56: semantic validation table", "[hard-cases][R56]") {
     const std::string sphere = c + "sphere { center <0, 0, 0>  radius 1  material { ";
     const std::string light = c + "light area { position <0, 5, 0>  ";
     check_rows({
-        {"radius 0", c + "sphere { center <0, 0, 0>  radius 0  material { } }\n", "r54.wsd:2:35", "'radius' must be > 0, found 0"},
+        {"radius 0", c + "sphere { center <0, 0, 0>  radius 0  material { } }\n", "r54.wsd:2:35",
+         "'radius' must be > 0, found 0"},
         {"radius < 0", c + "sphere { center <0, 0, 0>  radius -2  material { } }\n", "r54.wsd:2:35",
          "'radius' must be > 0, found -2"},
         // A degenerate triangle is found by the scene builder; an object is reported at its keyword,
         // a mesh face at the face's literal (the language reference: naming the face and the line).
-        {"zero-area triangle", c + "triangle { <0, 0, 0>, <1, 1, 1>, <2, 2, 2>  material { } }\n", "r54.wsd:2:1",
-         "degenerate triangle"},
+        {"zero-area triangle", c + "triangle { <0, 0, 0>, <1, 1, 1>, <2, 2, 2>  material { } }\n",
+         "r54.wsd:2:1", "degenerate triangle"},
         {"zero-area mesh face",
          c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <2, 0, 0>] faces [<0, 1, 2>]  material { } }\n",
          "r54.wsd:2:58", "face 0: degenerate triangle"},
         {"mesh index out of range",
-         c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 2>, <2, 1, 3>]  material { } }\n",
+         c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 2>, <2, 1, 3>]  material { } "
+             "}\n",
          "r54.wsd:2:69", "face 1: index 3 is out of range (the mesh has 3 vertices)"},
         {"negative mesh index",
          c + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, -1, 2>]  material { } }\n",
          "r54.wsd:2:58", "face 0: index -1 is out of range"},
         // No NaN can be written in .wsd: `nan` is a name and a NaN result is an error where it arises.
-        {"a NaN coordinate by name", c + "sphere { center <nan, 0, 0>  radius 1  material { } }\n", "r54.wsd:2:18",
-         "unknown name 'nan'"},
-        {"a NaN coordinate by arithmetic", c + "sphere { center <0 * (1e308 * 10), 0, 0>  radius 1  material { } }\n",
-         "r54.wsd:2:29", "result of '*' is not a finite number"},
+        {"a NaN coordinate by name", c + "sphere { center <nan, 0, 0>  radius 1  material { } }\n",
+         "r54.wsd:2:18", "unknown name 'nan'"},
+        {"a NaN coordinate by arithmetic",
+         c + "sphere { center <0 * (1e308 * 10), 0, 0>  radius 1  material { } }\n", "r54.wsd:2:29",
+         "result of '*' is not a finite number"},
         {"ior 0", sphere + "ior 0 } }\n", "r54.wsd:2:53", "'ior' must be > 0, found 0"},
         {"ior < 0", sphere + "ior -1.5 } }\n", "r54.wsd:2:53", "'ior' must be > 0, found -1.5"},
-        {"reflection < 0", sphere + "reflection -0.1 } }\n", "r54.wsd:2:60", "'reflection' must be in [0, 1], found -0.1"},
-        {"reflection > 1", sphere + "reflection 1.5 } }\n", "r54.wsd:2:60", "'reflection' must be in [0, 1], found 1.5"},
+        {"reflection < 0", sphere + "reflection -0.1 } }\n", "r54.wsd:2:60",
+         "'reflection' must be in [0, 1], found -0.1"},
+        {"reflection > 1", sphere + "reflection 1.5 } }\n", "r54.wsd:2:60",
+         "'reflection' must be in [0, 1], found 1.5"},
         {"transmission < 0", sphere + "transmission -0.1 } }\n", "r54.wsd:2:62",
          "'transmission' must be in [0, 1], found -0.1"},
-        {"transmission > 1", sphere + "transmission 2 } }\n", "r54.wsd:2:62", "'transmission' must be in [0, 1], found 2"},
+        {"transmission > 1", sphere + "transmission 2 } }\n", "r54.wsd:2:62",
+         "'transmission' must be in [0, 1], found 2"},
         {"shininess 0", sphere + "shininess 0 } }\n", "r54.wsd:2:59", "'shininess' must be > 0, found 0"},
         {"shininess < 0", sphere + "shininess -5 } }\n", "r54.wsd:2:59", "'shininess' must be > 0, found -5"},
         {"ambient < 0", sphere + "ambient -0.5 } }\n", "r54.wsd:2:57", "'ambient' must be >= 0, found -0.5"},
@@ -427,38 +460,47 @@ TEST_CASE("R56: semantic validation table", "[hard-cases][R56]") {
          "'bump_strength' must be >= 0, found -0.3"},
         {"absorption < 0", sphere + "absorption <0, -1, 0> } }\n", "r54.wsd:2:60",
          "'absorption' must have components >= 0, found <0, -1, 0>"},
-        {"settings ambient < 0", c + "settings { ambient -0.1 }\n", "r54.wsd:2:20", "'ambient' must be >= 0, found -0.1"},
-        {"width 0", c + "settings { width 0 }\n", "r54.wsd:2:18", "'width' must be an integer from 1 to 100000, found 0"},
-        {"height < 1", c + "settings { height -3 }\n", "r54.wsd:2:19", "'height' must be an integer from 1 to 100000, found -3"},
+        {"settings ambient < 0", c + "settings { ambient -0.1 }\n", "r54.wsd:2:20",
+         "'ambient' must be >= 0, found -0.1"},
+        {"width 0", c + "settings { width 0 }\n", "r54.wsd:2:18",
+         "'width' must be an integer from 1 to 100000, found 0"},
+        {"height < 1", c + "settings { height -3 }\n", "r54.wsd:2:19",
+         "'height' must be an integer from 1 to 100000, found -3"},
         {"supersamples 0", c + "settings { supersamples 0 }\n", "r54.wsd:2:25",
          "'supersamples' must be an integer from 1 to 4096, found 0"},
         {"max_depth < 0", c + "settings { max_depth -1 }\n", "r54.wsd:2:22",
          "'max_depth' must be an integer from 0 to 256, found -1"},
-        {"fov 0", "camera { position <0, 0, -5>  look_at <0, 0, 0>  fov 0 }\n", "r54.wsd:1:54", "'fov' must be in (0, 180), found 0"},
+        {"fov 0", "camera { position <0, 0, -5>  look_at <0, 0, 0>  fov 0 }\n", "r54.wsd:1:54",
+         "'fov' must be in (0, 180), found 0"},
         {"fov 180", "camera { position <0, 0, -5>  look_at <0, 0, 0>  fov 180 }\n", "r54.wsd:1:54",
          "'fov' must be in (0, 180), found 180"},
         {"fov < 0", "camera { position <0, 0, -5>  look_at <0, 0, 0>  fov -30 }\n", "r54.wsd:1:54",
          "'fov' must be in (0, 180), found -30"},
         {"fov > 180", "camera { position <0, 0, -5>  look_at <0, 0, 0>  fov 270 }\n", "r54.wsd:1:54",
          "'fov' must be in (0, 180), found 270"},
-        {"area light u zero", light + "u <0, 0, 0>  v <0, 0, 1> }\n", "r54.wsd:2:36", "area light edge 'u' must not be the zero vector"},
-        {"area light v zero", light + "u <1, 0, 0>  v <0, 0, 0> }\n", "r54.wsd:2:49", "area light edge 'v' must not be the zero vector"},
+        {"area light u zero", light + "u <0, 0, 0>  v <0, 0, 1> }\n", "r54.wsd:2:36",
+         "area light edge 'u' must not be the zero vector"},
+        {"area light v zero", light + "u <1, 0, 0>  v <0, 0, 0> }\n", "r54.wsd:2:49",
+         "area light edge 'v' must not be the zero vector"},
         {"area light u parallel to v", light + "u <1, 0, 0>  v <-3, 0, 0> }\n", "r54.wsd:2:49",
          "area light edges 'u' and 'v' are parallel"},
-        {"camera up parallel to the view", "camera { position <0, 0, 0>  look_at <0, 0, 5>  up <0, 0, -1> }\n",
-         "r54.wsd:1:52", "camera 'up' is parallel to the view direction (look_at - position)"},
-        {"camera looking along the default up", "camera { position <0, 0, 0>  look_at <0, -5, 0> }\n", "r54.wsd:1:38",
-         "camera looks along the default 'up' <0, 1, 0>"},
+        {"camera up parallel to the view",
+         "camera { position <0, 0, 0>  look_at <0, 0, 5>  up <0, 0, -1> }\n", "r54.wsd:1:52",
+         "camera 'up' is parallel to the view direction (look_at - position)"},
+        {"camera looking along the default up", "camera { position <0, 0, 0>  look_at <0, -5, 0> }\n",
+         "r54.wsd:1:38", "camera looks along the default 'up' <0, 1, 0>"},
     });
     // The boundaries that are allowed: ior 1 (an identity, R43a), reflection and transmission 0
     // and 1, max_depth 0, zero ambient, diffuse, specular, bump_strength and absorption.
-    CHECK(load(sphere + "ior 1  transmission 1  ambient 0  diffuse 0  specular 0  bump perlin { }  bump_strength 0  "
-                        "absorption <0, 0, 0> } }\nsettings { max_depth 0  width 1  height 1  supersamples 1 }\n")
+    CHECK(load(sphere +
+               "ior 1  transmission 1  ambient 0  diffuse 0  specular 0  bump perlin { }  bump_strength 0  "
+               "absorption <0, 0, 0> } }\nsettings { max_depth 0  width 1  height 1  supersamples 1 }\n")
               .loaded);
     CHECK(load(sphere + "reflection 1  shininess 1e-9 } }\n").loaded);
 }
 
-TEST_CASE("R56: a NaN or an index out of range in an OBJ file names the file and its line", "[hard-cases][R56]") {
+TEST_CASE("R56: a NaN or an index out of range in an OBJ file names the file and its line",
+          "[hard-cases][R56]") {
     TempDir dir;
     dir.write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
     dir.write("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
@@ -497,18 +539,23 @@ std::string literal_spheres(size_t n) {
 // not asserted, and R55's bound is not met: the syntax tree holds about 1.9 KB per sphere
 // statement (peak about 2.5 KB per sphere through lowering, so a 100 MB file of spheres needs
 // some 4 GB), against about 0.5 KB for the sphere in the final scene.
-TEST_CASE("R55: a large valid file loads completely and equals the same scene as a loop", "[hard-cases][R55][large]") {
+TEST_CASE("R55: a large valid file loads completely and equals the same scene as a loop",
+          "[hard-cases][R55][large]") {
     const size_t n = sanitized() ? 20'000 : 200'000;
     const std::string text = literal_spheres(n);
     {
         const Outcome literal = load(text, "r55.wsd", false);
         REQUIRE(literal.errors.empty());
         REQUIRE(literal.loaded);
-        const Outcome looped = load(camera + "let m = material { color <1, 0.5, 0.25> }\n"
-                                             "for i in 0 .. " + std::to_string(n) + " {\n"
-                                             "    sphere { center <i % 1000, floor(i / 1000), -1.25>  radius 0.375  material m }\n"
-                                             "}\n",
-                                    "r55.wsd", false);
+        const Outcome looped =
+            load(camera +
+                     "let m = material { color <1, 0.5, 0.25> }\n"
+                     "for i in 0 .. " +
+                     std::to_string(n) +
+                     " {\n"
+                     "    sphere { center <i % 1000, floor(i / 1000), -1.25>  radius 0.375  material m }\n"
+                     "}\n",
+                 "r55.wsd", false);
         REQUIRE(looped.loaded);
         const auto& a = literal.scene->spec.shapes;
         const auto& b = looped.scene->spec.shapes;
@@ -516,7 +563,8 @@ TEST_CASE("R55: a large valid file loads completely and equals the same scene as
         REQUIRE(b.size() == n);
         size_t differ = 0;
         for (size_t i = 0; i < n; ++i)
-            if (a[i].center != b[i].center || a[i].radius != b[i].radius || a[i].material != b[i].material) ++differ;
+            if (a[i].center != b[i].center || a[i].radius != b[i].radius || a[i].material != b[i].material)
+                ++differ;
         CHECK(differ == 0);
         CHECK(a.back().center == glm::dvec3((n - 1) % 1000, (n - 1) / 1000, -1.25));
         CHECK(literal.scene->summary.objects == n);
@@ -534,15 +582,17 @@ TEST_CASE("R55: a large OBJ mesh loads completely", "[hard-cases][R55][large]") 
     for (size_t y = 0; y < k; ++y)
         for (size_t x = 0; x < k; ++x) {
             const size_t v = y * (k + 1) + x + 1;  // OBJ indices start at 1
-            obj += "f " + std::to_string(v) + " " + std::to_string(v + 1) + " " + std::to_string(v + k + 2) + "\n";
-            obj += "f " + std::to_string(v) + " " + std::to_string(v + k + 2) + " " + std::to_string(v + k + 1) + "\n";
+            obj += "f " + std::to_string(v) + " " + std::to_string(v + 1) + " " + std::to_string(v + k + 2) +
+                   "\n";
+            obj += "f " + std::to_string(v) + " " + std::to_string(v + k + 2) + " " +
+                   std::to_string(v + k + 1) + "\n";
         }
     TempDir dir;
     dir.write("grid.obj", obj);
     const std::string path = dir.write("grid.wsd", camera + "mesh { file \"grid.obj\"  material { } }\n");
     std::ifstream in(path, std::ios::binary);
-    const Outcome out = load(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path,
-                             false);
+    const Outcome out = load(
+        std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path, false);
     REQUIRE(out.errors.empty());
     REQUIRE(out.loaded);
     CHECK(out.scene->summary.triangles == 2 * k * k);
@@ -550,7 +600,8 @@ TEST_CASE("R55: a large OBJ mesh loads completely", "[hard-cases][R55][large]") 
     REQUIRE(mesh.vertices.size() == (k + 1) * (k + 1));
     REQUIRE(mesh.faces.size() == 2 * k * k);
     CHECK(mesh.vertices.back() == glm::vec3(k, k, 0));
-    CHECK(mesh.faces.back() == glm::uvec3((k - 1) * (k + 1) + k - 1, (k + 1) * (k + 1) - 1, (k + 1) * (k + 1) - 2));
+    CHECK(mesh.faces.back() ==
+          glm::uvec3((k - 1) * (k + 1) + k - 1, (k + 1) * (k + 1) - 1, (k + 1) * (k + 1) - 2));
 }
 
 // R57 (parser fuzzing in CI) is not a unit test: fuzz/fuzz_lang.cpp is a libFuzzer target over the

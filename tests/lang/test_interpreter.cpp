@@ -2,14 +2,13 @@
 // scoping and shadowing, loops and the iteration budget, if, include (relative paths, once per
 // scene, cycles, depth, errors inside included files), every builtin, every runtime error, and the
 // evaluator's own recursion guard.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
-
-#include <unistd.h>
 
 #include "eval_helpers.h"
 #include "lang/builtins.h"
@@ -187,7 +186,8 @@ TEST_CASE("lets bind once per scope; inner scopes shadow", "[interpreter]") {
 }
 
 TEST_CASE("builtins live outside the file's scope and can be shadowed", "[interpreter]") {
-    auto e = evaluate_text("let floor = material { color <1, 0, 0> }\nlet pi = 3\nlet x = pi * 2\nlet y = sin(0)\n");
+    auto e = evaluate_text(
+        "let floor = material { color <1, 0, 0> }\nlet pi = 3\nlet x = pi * 2\nlet y = sin(0)\n");
     CHECK(e->errors().empty());
     CHECK(e->get("x")->number() == 6);
     CHECK(e->get("floor")->is(ValueType::Material));
@@ -202,11 +202,12 @@ TEST_CASE("a failed let does not cascade into unknown names", "[interpreter]") {
 }
 
 TEST_CASE("for runs over integer ranges and lists", "[interpreter]") {
-    auto l = load_text("for i in 0 .. 5 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
-                       "for i in 3 .. 1 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
-                       "for i in -2 .. -2 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
-                       "for c in [<0, 1, 0>, <0, 2, 0>] { sphere { center c radius 1 material { } } }\n",
-                       true);
+    auto l = load_text(
+        "for i in 0 .. 5 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
+        "for i in 3 .. 1 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
+        "for i in -2 .. -2 { sphere { center <i, 0, 0> radius 1 material { } } }\n"
+        "for c in [<0, 1, 0>, <0, 2, 0>] { sphere { center c radius 1 material { } } }\n",
+        true);
     REQUIRE(l->errors().empty());
     REQUIRE(l->scene);
     CHECK(l->scene->summary.objects == 7);
@@ -248,10 +249,11 @@ TEST_CASE("an error in a loop body is reported once", "[interpreter]") {
 }
 
 TEST_CASE("if takes the first true branch and never evaluates the others", "[interpreter]") {
-    auto e = evaluate_text("let v = 2\n"
-                           "if v == 1 { let a = 1 / 0 } else if v == 2 { let b = 1 } else { let c = sqrt(-1) }\n"
-                           "if false { let d = [1][5] }\n"
-                           "if true { } else { let e = undefined_name }\n");
+    auto e = evaluate_text(
+        "let v = 2\n"
+        "if v == 1 { let a = 1 / 0 } else if v == 2 { let b = 1 } else { let c = sqrt(-1) }\n"
+        "if false { let d = [1][5] }\n"
+        "if true { } else { let e = undefined_name }\n");
     CHECK(e->errors().empty());
     CHECK(evaluate_text("if 1 { }")->errors() ==
           std::vector<std::string>{"1:4: 'if' condition must be a bool, found number"});
@@ -340,7 +342,8 @@ TEST_CASE("every runtime error is reported where the spec says", "[interpreter][
     CHECK(error_of("atan2(1)") == "9: 'atan2' takes 2 arguments, found 1");
     CHECK(error_of("sin(<1, 2, 3>)") == "13: 'sin' expects a number, found vector3");
     CHECK(error_of("len(1)") == "13: 'len' expects a list, found number");
-    CHECK(error_of("dot(<1, 2>, <1, 2, 3>)") == "21: 'dot' expects a vector2 like its first argument, found vector3");
+    CHECK(error_of("dot(<1, 2>, <1, 2, 3>)") ==
+          "21: 'dot' expects a vector2 like its first argument, found vector3");
     CHECK(error_of("cross(<1, 2>, <1, 2>)") == "15: 'cross' expects a vector3, found vector2");
     // Type errors of operators.
     CHECK(error_of("\"a\" - \"b\"") == "13: operator '-' cannot combine string and string");
@@ -412,9 +415,10 @@ TEST_CASE("the evaluator survives a 10,000-deep expression tree", "[interpreter]
 }
 
 TEST_CASE("a 100,000-sphere loop evaluates", "[interpreter][scale]") {
-    auto l = load_text(std::string(kCamera) +
-                       "let m = material { color <1, 0.5, 0.25> }\n"
-                       "for i in 0 .. 100000 { sphere { center <i % 100, floor(i / 100), 0> radius 0.4 material m } }\n");
+    auto l = load_text(
+        std::string(kCamera) +
+        "let m = material { color <1, 0.5, 0.25> }\n"
+        "for i in 0 .. 100000 { sphere { center <i % 100, floor(i / 100), 0> radius 0.4 material m } }\n");
     REQUIRE(l->errors().empty());
     REQUIRE(l->scene);
     CHECK(l->scene->summary.objects == 100000);
@@ -426,12 +430,12 @@ TEST_CASE("include runs a file in the scope where it stands, once per scene", "[
     TempDir dir;
     dir.write("lib/materials.wsdi", "let red = material { color <1, 0, 0> }\ninclude \"shapes.wsdi\"\n");
     dir.write("lib/shapes.wsdi", "sphere { center <0, 0, 0> radius 1 material red }\n");
-    const std::string main = dir.write(
-        "main.wsd", std::string(kCamera) +
-                        "include \"lib/materials.wsdi\"\n"
-                        "include \"lib/materials.wsdi\"\n"   // skipped: already included
-                        "include \"lib/shapes.wsdi\"\n"      // skipped too
-                        "sphere { center <0, 2, 0> radius 1 material red }\n");
+    const std::string main =
+        dir.write("main.wsd", std::string(kCamera) +
+                                  "include \"lib/materials.wsdi\"\n"
+                                  "include \"lib/materials.wsdi\"\n"  // skipped: already included
+                                  "include \"lib/shapes.wsdi\"\n"     // skipped too
+                                  "sphere { center <0, 2, 0> radius 1 material red }\n");
     auto l = load_file(main);
     REQUIRE(l->errors().empty());
     REQUIRE(l->scene);
@@ -443,12 +447,14 @@ TEST_CASE("include runs a file in the scope where it stands, once per scene", "[
 TEST_CASE("an include inside a block scope binds there", "[interpreter][include]") {
     TempDir dir;
     dir.write("defs.wsdi", "let size = 3\n");
-    const std::string main = dir.write("main.wsd", "if true { include \"defs.wsdi\"  let inner = size }\nlet outer = size\n");
+    const std::string main =
+        dir.write("main.wsd", "if true { include \"defs.wsdi\"  let inner = size }\nlet outer = size\n");
     auto l = load_file(main, true);
     CHECK(l->errors() == std::vector<std::string>{"2:13: unknown name 'size'"});
 }
 
-TEST_CASE("errors inside an included file are reported there with the include chain", "[interpreter][include]") {
+TEST_CASE("errors inside an included file are reported there with the include chain",
+          "[interpreter][include]") {
     TempDir dir;
     dir.write("a.wsdi", "include \"b.wsdi\"\n");
     dir.write("b.wsdi", "let x = 1\nlet y = x / 0\n");
@@ -491,8 +497,8 @@ TEST_CASE("a missing include names the path that was tried", "[interpreter][incl
     l = load_file(dir.write("dir.wsd", "include \"sub\"\n"), true);
     std::filesystem::create_directories(dir.path / "sub");
     l = load_file((dir.path / "dir.wsd").string(), true);
-    CHECK(l->errors() == std::vector<std::string>{"1:9: cannot read include file '" + (dir.path / "sub").string() +
-                                                  "': it is a directory"});
+    CHECK(l->errors() == std::vector<std::string>{"1:9: cannot read include file '" +
+                                                  (dir.path / "sub").string() + "': it is a directory"});
 }
 
 TEST_CASE("syntax errors in an included file stop the evaluation", "[interpreter][include]") {

@@ -1,7 +1,6 @@
 // Lexer and source-file tests: every token kind with its span, the number forms and their
 // errors, strings, nested comments, bad bytes, the line table and columns, and hostile input.
 #include <catch2/catch.hpp>
-
 #include <random>
 #include <string>
 #include <vector>
@@ -52,12 +51,11 @@ TEST_CASE("every punctuation token has its kind and span", "[lexer]") {
     const std::string src = "{ } ( ) [ ] < > , = . .. + - * / % == != <= >= && || !";
     const Lexed l = lex(src);
     const std::vector<TokenKind> expected = {
-        TokenKind::LBrace, TokenKind::RBrace, TokenKind::LParen, TokenKind::RParen,
-        TokenKind::LBracket, TokenKind::RBracket, TokenKind::Less, TokenKind::Greater,
-        TokenKind::Comma, TokenKind::Assign, TokenKind::Dot, TokenKind::DotDot,
-        TokenKind::Plus, TokenKind::Minus, TokenKind::Star, TokenKind::Slash,
-        TokenKind::Percent, TokenKind::EqEq, TokenKind::NotEq, TokenKind::LessEq,
-        TokenKind::GreaterEq, TokenKind::AndAnd, TokenKind::OrOr, TokenKind::Bang};
+        TokenKind::LBrace,    TokenKind::RBrace,  TokenKind::LParen,  TokenKind::RParen, TokenKind::LBracket,
+        TokenKind::RBracket,  TokenKind::Less,    TokenKind::Greater, TokenKind::Comma,  TokenKind::Assign,
+        TokenKind::Dot,       TokenKind::DotDot,  TokenKind::Plus,    TokenKind::Minus,  TokenKind::Star,
+        TokenKind::Slash,     TokenKind::Percent, TokenKind::EqEq,    TokenKind::NotEq,  TokenKind::LessEq,
+        TokenKind::GreaterEq, TokenKind::AndAnd,  TokenKind::OrOr,    TokenKind::Bang};
     REQUIRE(kinds(l) == expected);
     CHECK(l.diags.all().empty());
     // Each token's span is exactly its spelling, at the offset where it stands.
@@ -73,15 +71,15 @@ TEST_CASE("every punctuation token has its kind and span", "[lexer]") {
 }
 
 TEST_CASE("keywords are reserved, other words are identifiers", "[lexer]") {
-    const Lexed l = lex("let for in if else include settings camera light sphere box triangle plane "
-                        "mesh material image checker perlin true false point radius _x9 lets Sphere");
+    const Lexed l =
+        lex("let for in if else include settings camera light sphere box triangle plane "
+            "mesh material image checker perlin true false point radius _x9 lets Sphere");
     const std::vector<TokenKind> expected = {
-        TokenKind::Let, TokenKind::For, TokenKind::In, TokenKind::If, TokenKind::Else,
-        TokenKind::Include, TokenKind::Settings, TokenKind::Camera, TokenKind::Light,
-        TokenKind::Sphere, TokenKind::Box, TokenKind::Triangle, TokenKind::Plane,
-        TokenKind::Mesh, TokenKind::Material, TokenKind::Image, TokenKind::Checker,
-        TokenKind::Perlin, TokenKind::True, TokenKind::False, TokenKind::Ident,
-        TokenKind::Ident, TokenKind::Ident, TokenKind::Ident, TokenKind::Ident};
+        TokenKind::Let,     TokenKind::For,      TokenKind::In,     TokenKind::If,    TokenKind::Else,
+        TokenKind::Include, TokenKind::Settings, TokenKind::Camera, TokenKind::Light, TokenKind::Sphere,
+        TokenKind::Box,     TokenKind::Triangle, TokenKind::Plane,  TokenKind::Mesh,  TokenKind::Material,
+        TokenKind::Image,   TokenKind::Checker,  TokenKind::Perlin, TokenKind::True,  TokenKind::False,
+        TokenKind::Ident,   TokenKind::Ident,    TokenKind::Ident,  TokenKind::Ident, TokenKind::Ident};
     CHECK(kinds(l) == expected);
     CHECK(l.text(l.tokens[21]) == "radius");
     CHECK(l.text(l.tokens.back()) == "Sphere");
@@ -176,8 +174,8 @@ TEST_CASE("comments nest; an unterminated one is reported where it opened", "[le
     CHECK(open.error_at(0).column == 3);
 
     const Lexed slash = lex("a/b/*c*/d");
-    CHECK(kinds(slash) == std::vector<TokenKind>{TokenKind::Ident, TokenKind::Slash, TokenKind::Ident,
-                                                 TokenKind::Ident});
+    CHECK(kinds(slash) ==
+          std::vector<TokenKind>{TokenKind::Ident, TokenKind::Slash, TokenKind::Ident, TokenKind::Ident});
 }
 
 TEST_CASE("NUL bytes and invalid UTF-8 are errors at that byte", "[lexer]") {
@@ -210,8 +208,8 @@ TEST_CASE("non-ASCII letters and stray characters are invalid outside strings", 
     REQUIRE(word.errors().size() == 1);
     CHECK(word.errors()[0] == "invalid character 'ö' in name 'größe'");
     CHECK(word.error_at(0).column == 7);
-    CHECK(kinds(word) == std::vector<TokenKind>{TokenKind::Let, TokenKind::Ident, TokenKind::Assign,
-                                                TokenKind::Number});
+    CHECK(kinds(word) ==
+          std::vector<TokenKind>{TokenKind::Let, TokenKind::Ident, TokenKind::Assign, TokenKind::Number});
 
     const Lexed stray = lex("a # b ; c & d");
     CHECK(stray.errors() == std::vector<std::string>{"invalid character '#'", "invalid character ';'",
@@ -231,7 +229,8 @@ TEST_CASE("byte-order marks", "[lexer]") {
 
     const Lexed utf16 = lex("\xFF\xFEs\0p\0");
     CHECK(utf16.tokens.empty());
-    CHECK(utf16.errors() == std::vector<std::string>{"file is UTF-16 (it starts with a UTF-16 byte-order mark)"});
+    CHECK(utf16.errors() ==
+          std::vector<std::string>{"file is UTF-16 (it starts with a UTF-16 byte-order mark)"});
 }
 
 TEST_CASE("re-lexing after reset reports nothing twice", "[lexer]") {
@@ -239,10 +238,12 @@ TEST_CASE("re-lexing after reset reports nothing twice", "[lexer]") {
     Diagnostics diags;
     const uint32_t f = sources.add("t.wsd", "1e999 /* open");
     Lexer lexer(f, sources.file(f).text, &diags);
-    while (lexer.next().kind != TokenKind::Eof) {}
+    while (lexer.next().kind != TokenKind::Eof) {
+    }
     REQUIRE(diags.error_count() == 2);
     lexer.reset(0);
-    while (lexer.next().kind != TokenKind::Eof) {}
+    while (lexer.next().kind != TokenKind::Eof) {
+    }
     CHECK(diags.error_count() == 2);
 }
 
@@ -276,7 +277,9 @@ TEST_CASE("UTF-8 decoding accepts valid and rejects invalid sequences", "[source
     CHECK_FALSE(decode_utf8("\xF4\x90\x80\x80", 0).valid);  // above U+10FFFF
     CHECK_FALSE(decode_utf8("\xE2\x9C", 0).valid);          // truncated
     CHECK_FALSE(decode_utf8("\x80", 0).valid);
-    CHECK(count_columns("a\xC3\xA9\xFF" "b", 0, 5) == 4);
+    CHECK(count_columns("a\xC3\xA9\xFF"
+                        "b",
+                        0, 5) == 4);
 }
 
 TEST_CASE("hostile input never crashes the lexer", "[lexer]") {

@@ -2,14 +2,13 @@
 // block validation (unknown, repeated, missing, type, range), materials (base, the
 // reflection + transmission rule, default_material, deduplication), camera and light checks,
 // meshes (packed and general lists, OBJ files, face errors at the face), and SpecError mapping.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
-
-#include <unistd.h>
 
 #include "eval_helpers.h"
 #include "lang/lower.h"
@@ -21,7 +20,9 @@ namespace {
 
 const std::string kMat = " material { } ";
 
-std::unique_ptr<Loaded> scene(const std::string& body) { return load_text(std::string(kCamera) + body); }
+std::unique_ptr<Loaded> scene(const std::string& body) {
+    return load_text(std::string(kCamera) + body);
+}
 
 // The errors of a scene whose first line is the camera (lines count from the body's first line).
 std::vector<std::string> body_errors(const std::string& body) {
@@ -35,7 +36,9 @@ std::vector<std::string> body_errors(const std::string& body) {
     return out;
 }
 
-glm::dvec3 apply(const wsd::render::Mat4& m, glm::dvec3 p) { return glm::dvec3(m * glm::dvec4(p, 1.0)); }
+glm::dvec3 apply(const wsd::render::Mat4& m, glm::dvec3 p) {
+    return glm::dvec3(m * glm::dvec4(p, 1.0));
+}
 
 void check_close(glm::dvec3 a, glm::dvec3 b) {
     CHECK(a.x == Approx(b.x).margin(1e-12));
@@ -87,10 +90,17 @@ TEST_CASE("quarter turns are exact", "[lower][transform]") {
 }
 
 TEST_CASE("transforms apply in the order written", "[lower][transform]") {
-    auto l = scene("sphere { center <0, 0, 0> radius 1 scale 2 translate <1, 0, 0>" + kMat + "}\n"
-                   "sphere { center <0, 0, 0> radius 1 translate <1, 0, 0> scale 2" + kMat + "}\n"
-                   "sphere { center <0, 0, 0> radius 1 scale <1, 2, 3> rotate <0, 0, 90> translate <0, 0, 5>" + kMat + "}\n"
-                   "box { min <-1, -1, -1> max <1, 1, 1> rotate <0, 0, 45> rotate <35.264, 0, 0>" + kMat + "}\n");
+    auto l =
+        scene("sphere { center <0, 0, 0> radius 1 scale 2 translate <1, 0, 0>" + kMat +
+              "}\n"
+              "sphere { center <0, 0, 0> radius 1 translate <1, 0, 0> scale 2" +
+              kMat +
+              "}\n"
+              "sphere { center <0, 0, 0> radius 1 scale <1, 2, 3> rotate <0, 0, 90> translate <0, 0, 5>" +
+              kMat +
+              "}\n"
+              "box { min <-1, -1, -1> max <1, 1, 1> rotate <0, 0, 45> rotate <35.264, 0, 0>" +
+              kMat + "}\n");
     REQUIRE(l->errors().empty());
     const auto& shapes = l->scene->spec.shapes;
     CHECK(apply(shapes[0].object_to_world, {1, 0, 0}) == glm::dvec3(3, 0, 0));
@@ -113,12 +123,17 @@ TEST_CASE("scale factors are checked", "[lower][transform]") {
 }
 
 TEST_CASE("every table's defaults are the documented ones", "[lower][defaults]") {
-    auto l = load_text("settings { }\ncamera { position <0, 0, 0> look_at <0, 0, 1> }\n"
-                       "light point { position <0, 5, 0> }\n"
-                       "light area { position <0, 5, 0> u <1, 0, 0> v <0, 0, 1> }\n"
-                       "plane { normal <0, 1, 0>" + kMat + "}\n"
-                       "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0>" + kMat + "}\n"
-                       "sphere { center <0, 0, 0> radius 1 material { texture checker { } bump perlin { } } }\n");
+    auto l = load_text(
+        "settings { }\ncamera { position <0, 0, 0> look_at <0, 0, 1> }\n"
+        "light point { position <0, 5, 0> }\n"
+        "light area { position <0, 5, 0> u <1, 0, 0> v <0, 0, 1> }\n"
+        "plane { normal <0, 1, 0>" +
+        kMat +
+        "}\n"
+        "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0>" +
+        kMat +
+        "}\n"
+        "sphere { center <0, 0, 0> radius 1 material { texture checker { } bump perlin { } } }\n");
     REQUIRE(l->errors().empty());
     const auto& spec = l->scene->spec;
     CHECK(spec.settings.width == 640);
@@ -178,14 +193,17 @@ TEST_CASE("every table's defaults are the documented ones", "[lower][defaults]")
 }
 
 TEST_CASE("properties are read into the spec", "[lower]") {
-    auto l = load_text("settings { width 32 height 16 supersamples 9 adaptive_supersampling on aa_threshold 0.1 "
-                       "bailout 0 max_depth 3 ambient 0.5 background <0.1, 0.2, 0.3> seed 4294967295 }\n"
-                       "camera { position <1, 2, 3> look_at <1, 2, 4> up <1, 1, 0> fov 45 }\n"
-                       "light area { position <0, 5, 0> u <1, 0, 0> v <0, 0, 1> samples 8, 4 sampling uniform "
-                       "adaptive on color <1, 0.5, 0> intensity 2 }\n"
-                       "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> uv <0, 0>, <1, 0>, <0, 1>" + kMat + "}\n"
-                       "sphere { center <0, 0, 0> radius 1 material { texture perlin { kind marble scale <1, 2, 0> "
-                       "octaves 3 colors <1, 0, 0>, <0, 0, 1> } ambient 0.1 reflection 0.25 transmission 0.75 } }\n");
+    auto l = load_text(
+        "settings { width 32 height 16 supersamples 9 adaptive_supersampling on aa_threshold 0.1 "
+        "bailout 0 max_depth 3 ambient 0.5 background <0.1, 0.2, 0.3> seed 4294967295 }\n"
+        "camera { position <1, 2, 3> look_at <1, 2, 4> up <1, 1, 0> fov 45 }\n"
+        "light area { position <0, 5, 0> u <1, 0, 0> v <0, 0, 1> samples 8, 4 sampling uniform "
+        "adaptive on color <1, 0.5, 0> intensity 2 }\n"
+        "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> uv <0, 0>, <1, 0>, <0, 1>" +
+        kMat +
+        "}\n"
+        "sphere { center <0, 0, 0> radius 1 material { texture perlin { kind marble scale <1, 2, 0> "
+        "octaves 3 colors <1, 0, 0>, <0, 0, 1> } ambient 0.1 reflection 0.25 transmission 0.75 } }\n");
     REQUIRE(l->errors().empty());
     const auto& spec = l->scene->spec;
     CHECK(spec.settings.width == 32);
@@ -209,7 +227,8 @@ TEST_CASE("properties are read into the spec", "[lower]") {
     CHECK(m.texture->color2 == glm::dvec3(0, 0, 1));
 }
 
-TEST_CASE("blocks report unknown, repeated, missing, mistyped and out-of-range properties", "[lower][errors]") {
+TEST_CASE("blocks report unknown, repeated, missing, mistyped and out-of-range properties",
+          "[lower][errors]") {
     auto l = scene("sphere { center <0, 0, 0> radus 1" + kMat + "}\n");
     REQUIRE(l->diags.all().size() == 2);
     CHECK(l->errors()[0] == "2:27: unknown property 'radus' in sphere");
@@ -244,19 +263,22 @@ TEST_CASE("blocks report unknown, repeated, missing, mistyped and out-of-range p
           std::vector<std::string>{"1:66: 'sampling' must be one of jittered or uniform"});
     CHECK(body_errors("sphere { center <0, 0, 0> radius 1 material { texture perlin { kind marbel } } }") ==
           std::vector<std::string>{"1:69: 'kind' must be one of noise, turbulence, marble or wood"});
-    CHECK(body_errors("sphere { center <0, 0, 0> radius 1 material { texture checker { colors <1, 1, 1> } } }") ==
+    CHECK(body_errors(
+              "sphere { center <0, 0, 0> radius 1 material { texture checker { colors <1, 1, 1> } } }") ==
           std::vector<std::string>{"1:65: 'colors' takes 2 values, found 1"});
 }
 
 TEST_CASE("settings: the image size limit is reported at the later of width and height", "[lower][errors]") {
     CHECK(body_errors("settings { height 100000 width 100000 }") ==
-          std::vector<std::string>{"1:32: image size 100000 x 100000 exceeds the limit of 268435456 pixels (2^28)"});
+          std::vector<std::string>{
+              "1:32: image size 100000 x 100000 exceeds the limit of 268435456 pixels (2^28)"});
     CHECK(body_errors("settings { width 16384 height 16384 }").empty());  // exactly 2^28
 }
 
 TEST_CASE("a scene has at most one settings and exactly one camera", "[lower][errors]") {
     auto l = scene("camera { position <0, 0, 0> look_at <0, 0, 1> }\nsettings { }\nsettings { }\n");
-    CHECK(l->errors() == std::vector<std::string>{"2:1: more than one camera", "4:1: more than one 'settings' block"});
+    CHECK(l->errors() ==
+          std::vector<std::string>{"2:1: more than one camera", "4:1: more than one 'settings' block"});
     REQUIRE(l->diags.all()[0].notes.size() == 1);
     CHECK(where(l->sources, l->diags.all()[0].notes[0].span) == "1:1");
     CHECK(where(l->sources, l->diags.all()[1].notes[0].span) == "3:1");
@@ -271,11 +293,13 @@ TEST_CASE("a scene has at most one settings and exactly one camera", "[lower][er
 
 TEST_CASE("the camera's up must not be parallel to the view direction", "[lower][errors]") {
     auto errors = [](const std::string& camera) { return load_text(camera)->errors(); };
-    CHECK(errors("camera { position <0, 0, 0> look_at <0, 5, 0> up <0, -2, 0> }") ==
-          std::vector<std::string>{"1:50: camera 'up' is parallel to the view direction (look_at - position)"});
+    CHECK(
+        errors("camera { position <0, 0, 0> look_at <0, 5, 0> up <0, -2, 0> }") ==
+        std::vector<std::string>{"1:50: camera 'up' is parallel to the view direction (look_at - position)"});
     CHECK(errors("camera { position <0, 0, 0> look_at <0, 5, 0> }") ==
-          std::vector<std::string>{"1:37: camera looks along the default 'up' <0, 1, 0>: give an 'up' that is not "
-                                   "parallel to look_at - position"});
+          std::vector<std::string>{
+              "1:37: camera looks along the default 'up' <0, 1, 0>: give an 'up' that is not "
+              "parallel to look_at - position"});
     CHECK(errors("camera { position <1, 1, 1> look_at <1, 1, 1> }") ==
           std::vector<std::string>{"1:37: camera 'look_at' is the same point as 'position'"});
     CHECK(errors("camera { position <0, 0, 0> look_at <0, 0, 1> up <0, 0, 0> }") ==
@@ -302,9 +326,10 @@ TEST_CASE("area lights need non-zero, non-parallel edges and a bounded grid", "[
 }
 
 TEST_CASE("materials: base first, overrides, the reflection + transmission rule", "[lower][material]") {
-    auto l = scene("let glass = material { color <1, 1, 1> transmission 1 ior 1.5 }\n"
-                   "let tinted = material { color <1, 0.5, 0.5> base glass }\n"
-                   "sphere { center <0, 0, 0> radius 1 material tinted }\n");
+    auto l = scene(
+        "let glass = material { color <1, 1, 1> transmission 1 ior 1.5 }\n"
+        "let tinted = material { color <1, 0.5, 0.5> base glass }\n"
+        "sphere { center <0, 0, 0> radius 1 material tinted }\n");
     REQUIRE(l->errors().empty());
     const auto& m = l->scene->spec.materials[0];
     CHECK(m.transmission == 1);
@@ -322,11 +347,13 @@ TEST_CASE("materials: base first, overrides, the reflection + transmission rule"
     CHECK(body_errors("let m = material { bump checker { } }") ==
           std::vector<std::string>{"1:25: 'bump' must be a perlin texture, found a checker texture"});
     CHECK(body_errors("let m = material { shininess 0 ior -1 }") ==
-          std::vector<std::string>{"1:30: 'shininess' must be > 0, found 0", "1:36: 'ior' must be > 0, found -1"});
+          std::vector<std::string>{"1:30: 'shininess' must be > 0, found 0",
+                                   "1:36: 'ior' must be > 0, found -1"});
 }
 
 TEST_CASE("default_material makes material optional", "[lower][material]") {
-    auto l = scene("let default_material = material { color <0, 1, 0> }\nsphere { center <0, 0, 0> radius 1 }\n");
+    auto l =
+        scene("let default_material = material { color <0, 1, 0> }\nsphere { center <0, 0, 0> radius 1 }\n");
     REQUIRE(l->errors().empty());
     CHECK(l->scene->spec.materials[0].color == glm::dvec3(0, 1, 0));
     CHECK(body_errors("sphere { center <0, 0, 0> radius 1 }") ==
@@ -336,11 +363,12 @@ TEST_CASE("default_material makes material optional", "[lower][material]") {
 }
 
 TEST_CASE("materials are deduplicated by identity and counted", "[lower][material]") {
-    auto l = scene("let m = material { color <1, 0, 0> }\n"
-                   "for i in 0 .. 3 { sphere { center <i, 0, 0> radius 0.5 material m } }\n"
-                   "for i in 0 .. 2 { sphere { center <i, 3, 0> radius 0.5 material { color <1, 0, 0> } } }\n"
-                   "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> material m }\n"
-                   "light point { position <0, 9, 0> }\n");
+    auto l = scene(
+        "let m = material { color <1, 0, 0> }\n"
+        "for i in 0 .. 3 { sphere { center <i, 0, 0> radius 0.5 material m } }\n"
+        "for i in 0 .. 2 { sphere { center <i, 3, 0> radius 0.5 material { color <1, 0, 0> } } }\n"
+        "triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> material m }\n"
+        "light point { position <0, 9, 0> }\n");
     REQUIRE(l->errors().empty());
     const auto& s = l->scene->summary;
     CHECK(s.objects == 6);
@@ -354,10 +382,15 @@ TEST_CASE("materials are deduplicated by identity and counted", "[lower][materia
 }
 
 TEST_CASE("inline meshes convert packed and general lists", "[lower][mesh]") {
-    auto l = scene("mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0>] faces [<0, 1, 2>, <0, 2, 3>]\n"
-                   "       uvs [<0, 0>, <1, 0>, <1, 1>, <0, 1>]" + kMat + "}\n"
-                   "let c = <0, 0, 5>\n"
-                   "mesh { vertices [c, c + <1, 0, 0>, c + <0, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, -1>, <0, 0, -1>, <0, 0, -1>]" + kMat + "}\n");
+    auto l = scene(
+        "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>, <0, 1, 0>] faces [<0, 1, 2>, <0, 2, 3>]\n"
+        "       uvs [<0, 0>, <1, 0>, <1, 1>, <0, 1>]" +
+        kMat +
+        "}\n"
+        "let c = <0, 0, 5>\n"
+        "mesh { vertices [c, c + <1, 0, 0>, c + <0, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, -1>, <0, 0, "
+        "-1>, <0, 0, -1>]" +
+        kMat + "}\n");
     REQUIRE(l->errors().empty());
     const auto& mesh = *l->scene->spec.shapes[0].mesh;
     CHECK(mesh.vertices.size() == 4);
@@ -380,10 +413,12 @@ TEST_CASE("bad mesh faces are reported at the face, naming it", "[lower][mesh]")
     CHECK(body_errors(verts + "[<0, 1, 2>, <0, 1>]" + kMat + "}") ==
           std::vector<std::string>{"1:80: face 1 must be a vector3 of vertex indices, found vector2"});
     CHECK(body_errors(verts + "[]" + kMat + "}") == std::vector<std::string>{"1:68: 'faces' is empty"});
-    CHECK(body_errors(verts + "[<0, 1, 2>] uvs [<0, 0>]" + kMat + "}") ==
-          std::vector<std::string>{"1:84: 'uvs' has 1 elements, but the mesh has 4 vertices (one per vertex)"});
-    CHECK(body_errors("mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, 1>, <0, 0, 0>, <0, 0, 1>]" + kMat + "}") ==
-          std::vector<std::string>{"1:89: normal 1 is the zero vector"});
+    CHECK(
+        body_errors(verts + "[<0, 1, 2>] uvs [<0, 0>]" + kMat + "}") ==
+        std::vector<std::string>{"1:84: 'uvs' has 1 elements, but the mesh has 4 vertices (one per vertex)"});
+    CHECK(body_errors("mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, "
+                      "1>, <0, 0, 0>, <0, 0, 1>]" +
+                      kMat + "}") == std::vector<std::string>{"1:89: normal 1 is the zero vector"});
     CHECK(body_errors("mesh { faces [<0, 1, 2>]" + kMat + "}") ==
           std::vector<std::string>{"1:1: missing property 'vertices' in mesh"});
     CHECK(body_errors("mesh {" + kMat + "}") ==
@@ -399,9 +434,10 @@ TEST_CASE("OBJ meshes load relative to the naming file, once", "[lower][mesh]") 
     dir.write("models/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n");
     dir.write("models/bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 9\n");
     dir.write("parts/use.wsdi", "mesh { file \"../models/tri.obj\" material { } }\n");
-    const std::string main = dir.write("main.wsd", std::string(kCamera) +
-                                                       "include \"parts/use.wsdi\"\n"
-                                                       "mesh { file \"models/tri.obj\" scale 2 material { } }\n");
+    const std::string main =
+        dir.write("main.wsd", std::string(kCamera) +
+                                  "include \"parts/use.wsdi\"\n"
+                                  "mesh { file \"models/tri.obj\" scale 2 material { } }\n");
     std::ifstream in(main);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     auto l = load_text(text, false, false, main);
@@ -409,49 +445,62 @@ TEST_CASE("OBJ meshes load relative to the naming file, once", "[lower][mesh]") 
     CHECK(l->scene->summary.triangles == 4);
     CHECK(l->scene->spec.shapes[0].mesh == l->scene->spec.shapes[1].mesh);  // read once
 
-    const std::string bad = dir.write("bad.wsd", std::string(kCamera) + "mesh { file \"models/bad.obj\" material { } }\n");
-    l = load_text(std::string(kCamera) + "mesh { file \"models/bad.obj\" material { } }\n", false, false, bad);
+    const std::string bad =
+        dir.write("bad.wsd", std::string(kCamera) + "mesh { file \"models/bad.obj\" material { } }\n");
+    l = load_text(std::string(kCamera) + "mesh { file \"models/bad.obj\" material { } }\n", false, false,
+                  bad);
     REQUIRE(l->errors().size() == 1);
     CHECK(l->errors()[0].rfind("2:13: ", 0) == 0);
     CHECK(l->errors()[0].find("bad.obj:3") != std::string::npos);  // the OBJ file and its line
 
-    l = load_text(std::string(kCamera) + "mesh { file \"models/none.obj\" material { } }\n", false, false, bad);
+    l = load_text(std::string(kCamera) + "mesh { file \"models/none.obj\" material { } }\n", false, false,
+                  bad);
     REQUIRE(l->errors().size() == 1);
     CHECK(l->errors()[0].find((dir.path / "models/none.obj").string()) != std::string::npos);
 }
 
 TEST_CASE("image paths resolve relative to the naming file", "[lower][material]") {
-    auto l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 1 material { texture image \"tex/a.png\" } }\n",
+    auto l = load_text(std::string(kCamera) +
+                           "sphere { center <0, 0, 0> radius 1 material { texture image \"tex/a.png\" } }\n",
                        false, false, "scenes/deep/s.wsd");
     REQUIRE(l->errors().empty());
-    CHECK(l->scene->spec.materials[0].texture->image_path == (std::filesystem::path("scenes/deep") / "tex/a.png").string());
+    CHECK(l->scene->spec.materials[0].texture->image_path ==
+          (std::filesystem::path("scenes/deep") / "tex/a.png").string());
 }
 
 TEST_CASE("build errors map back to their spans", "[lower][spec-errors]") {
     // A degenerate triangle found by the scene builder is reported at the triangle.
-    auto l = load_text(std::string(kCamera) + "\ntriangle { <0, 0, 0>, <1, 0, 0>, <2, 0, 0>" + kMat + "}\n", false, true);
+    auto l = load_text(std::string(kCamera) + "\ntriangle { <0, 0, 0>, <1, 0, 0>, <2, 0, 0>" + kMat + "}\n",
+                       false, true);
     REQUIRE(l->errors().size() == 1);
     CHECK(l->errors()[0].rfind("3:1: ", 0) == 0);
     // A degenerate mesh face at that face's literal.
-    l = load_text(std::string(kCamera) + "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>, <2, 0, 0>]\n"
-                                         "       faces [<0, 1, 2>, <0, 1, 3>]" + kMat + "}\n",
+    l = load_text(std::string(kCamera) +
+                      "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>, <2, 0, 0>]\n"
+                      "       faces [<0, 1, 2>, <0, 1, 3>]" +
+                      kMat + "}\n",
                   false, true);
     REQUIRE(l->errors().size() == 1);
     CHECK(l->errors()[0].rfind("3:26: face 1", 0) == 0);
     // A missing texture at its path string.
-    l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 1 material { texture image \"no-such.png\" } }\n",
+    l = load_text(std::string(kCamera) +
+                      "sphere { center <0, 0, 0> radius 1 material { texture image \"no-such.png\" } }\n",
                   false, true, "/nonexistent-dir/s.wsd");
     REQUIRE(l->errors().size() == 1);
     CHECK(l->errors()[0].rfind("2:61: ", 0) == 0);
 }
 
 TEST_CASE("SpecErrors find faces given as a general list", "[lower][spec-errors]") {
-    auto e = evaluate_text(std::string(kCamera) + "let f = <0, 1, 2>\nmesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [f, <0, 2, 1>]" + kMat + "}\n");
+    auto e = evaluate_text(
+        std::string(kCamera) +
+        "let f = <0, 1, 2>\nmesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [f, <0, 2, 1>]" + kMat +
+        "}\n");
     REQUIRE(e->errors().empty());
     const uint32_t tag = e->scene.spec.shapes[0].tag;
     Diagnostics diags;
-    report_spec_errors({wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "degenerate triangle", 1}},
-                       e->scene, e->sources, diags);
+    report_spec_errors(
+        {wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "degenerate triangle", 1}}, e->scene,
+        e->sources, diags);
     REQUIRE(diags.all().size() == 1);
     CHECK(where(e->sources, diags.all()[0].span) == "3:61");
     CHECK(diags.all()[0].message == "face 1: degenerate triangle");
@@ -475,10 +524,14 @@ TEST_CASE("SpecErrors in an included file carry the include chain", "[lower][spe
 TEST_CASE("the primitive limit counts mesh triangles", "[lower][limits]") {
     Limits small;
     small.primitives = 3;
-    auto e = evaluate_text("sphere { center <0, 0, 0> radius 1" + kMat + "}\n"
-                           "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 2>, <0, 2, 1>, <1, 2, 0>]" + kMat + "}\n",
-                           small);
-    CHECK(e->errors() == std::vector<std::string>{
-                             "2:1: the scene has more than 3 primitives (the limit; a mesh counts its triangles)"});
+    auto e = evaluate_text(
+        "sphere { center <0, 0, 0> radius 1" + kMat +
+            "}\n"
+            "mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>] faces [<0, 1, 2>, <0, 2, 1>, <1, 2, 0>]" +
+            kMat + "}\n",
+        small);
+    CHECK(e->errors() ==
+          std::vector<std::string>{
+              "2:1: the scene has more than 3 primitives (the limit; a mesh counts its triangles)"});
     CHECK(e->interpreter->aborted());
 }

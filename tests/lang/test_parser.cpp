@@ -1,10 +1,9 @@
 // Parser tests: precedence, the vector-literal rule, lists and their packed form, blocks and
 // items (triangle vertices, the material shorthand), statements, recovery, the error limit,
 // the nesting limit (also on a small thread stack) and hostile input.
-#include <catch2/catch.hpp>
-
 #include <pthread.h>
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -48,32 +47,67 @@ const char* op_name(BinaryOp op) {
 std::string shape(const Expr& e) {
     std::ostringstream s;
     switch (e.kind) {
-    case ExprKind::Number: s << e.number; break;
-    case ExprKind::String: s << '"' << e.text << '"'; break;
-    case ExprKind::Bool: s << (e.boolean ? "true" : "false"); break;
-    case ExprKind::Ident: s << e.text; break;
-    case ExprKind::Bad: s << "BAD"; break;
-    case ExprKind::PackedList: s << "(packed " << e.packed->dims << "x" << e.packed->size() << ")"; break;
-    default: {
-        s << '(';
-        switch (e.kind) {
-        case ExprKind::Vector: s << "vec"; break;
-        case ExprKind::List: s << "list"; break;
-        case ExprKind::Unary: s << (e.unary_op == UnaryOp::Neg ? "neg" : "not"); break;
-        case ExprKind::Binary: s << op_name(e.binary_op); break;
-        case ExprKind::Call: s << "call " << e.text; break;
-        case ExprKind::Member: s << "." << e.text; break;
-        case ExprKind::Index: s << "index"; break;
-        case ExprKind::Material: s << "material"; break;
-        case ExprKind::Image: s << "image"; break;
-        case ExprKind::Checker: s << "checker"; break;
-        case ExprKind::Perlin: s << "perlin"; break;
-        default: break;
+        case ExprKind::Number:
+            s << e.number;
+            break;
+        case ExprKind::String:
+            s << '"' << e.text << '"';
+            break;
+        case ExprKind::Bool:
+            s << (e.boolean ? "true" : "false");
+            break;
+        case ExprKind::Ident:
+            s << e.text;
+            break;
+        case ExprKind::Bad:
+            s << "BAD";
+            break;
+        case ExprKind::PackedList:
+            s << "(packed " << e.packed->dims << "x" << e.packed->size() << ")";
+            break;
+        default: {
+            s << '(';
+            switch (e.kind) {
+                case ExprKind::Vector:
+                    s << "vec";
+                    break;
+                case ExprKind::List:
+                    s << "list";
+                    break;
+                case ExprKind::Unary:
+                    s << (e.unary_op == UnaryOp::Neg ? "neg" : "not");
+                    break;
+                case ExprKind::Binary:
+                    s << op_name(e.binary_op);
+                    break;
+                case ExprKind::Call:
+                    s << "call " << e.text;
+                    break;
+                case ExprKind::Member:
+                    s << "." << e.text;
+                    break;
+                case ExprKind::Index:
+                    s << "index";
+                    break;
+                case ExprKind::Material:
+                    s << "material";
+                    break;
+                case ExprKind::Image:
+                    s << "image";
+                    break;
+                case ExprKind::Checker:
+                    s << "checker";
+                    break;
+                case ExprKind::Perlin:
+                    s << "perlin";
+                    break;
+                default:
+                    break;
+            }
+            for (const ExprPtr& a : e.args) s << ' ' << shape(*a);
+            if (e.block) s << " {" << e.block->items.size() << " items}";
+            s << ')';
         }
-        for (const ExprPtr& a : e.args) s << ' ' << shape(*a);
-        if (e.block) s << " {" << e.block->items.size() << " items}";
-        s << ')';
-    }
     }
     return s.str();
 }
@@ -123,12 +157,15 @@ TEST_CASE("'<' opens a vector where an expression is expected", "[parser]") {
 
 TEST_CASE("vector literal errors", "[parser]") {
     CHECK(expr_shape("<a < b, 1>") == "ERROR 1:12: comparison '<' inside a vector literal needs parentheses");
-    CHECK(expr_shape("<a <= b, 1>") == "ERROR 1:12: comparison '<=' inside a vector literal needs parentheses");
-    CHECK(expr_shape("<1, a >= b, 2>") == "ERROR 1:15: comparison '>=' inside a vector literal needs parentheses");
+    CHECK(expr_shape("<a <= b, 1>") ==
+          "ERROR 1:12: comparison '<=' inside a vector literal needs parentheses");
+    CHECK(expr_shape("<1, a >= b, 2>") ==
+          "ERROR 1:15: comparison '>=' inside a vector literal needs parentheses");
     CHECK(expr_shape("<1>") == "ERROR 1:9: a vector literal needs 2 or 3 components, found 1");
     CHECK(expr_shape("<1, 2, 3, 4>") == "ERROR 1:17: expected '>' to close the vector, found ','");
     CHECK(expr_shape("<1, 2,>") == "ERROR 1:14: trailing comma in a vector literal");
-    CHECK(expr_shape("<1, 2") == "ERROR 1:14: expected ',' or '>' after a vector component, found end of file");
+    CHECK(expr_shape("<1, 2") ==
+          "ERROR 1:14: expected ',' or '>' after a vector component, found end of file");
     CHECK(expr_shape("<1 2>") == "ERROR 1:12: expected ',' after a vector component, found number '2'");
 }
 
@@ -239,8 +276,8 @@ TEST_CASE("a triangle's leading vertices form an item without a name", "[parser]
     CHECK(first_item("{ material { color c } }") == "[material] (material {1 items})");
     // Other blocks have no unnamed items.
     const auto p = parse_text("sphere { <0, 0, 0> }");
-    CHECK(p->errors() == std::vector<std::string>{
-                             "1:10: expected a property name or '}' in sphere block, found '<'"});
+    CHECK(p->errors() ==
+          std::vector<std::string>{"1:10: expected a property name or '}' in sphere block, found '<'"});
 }
 
 TEST_CASE("statements", "[parser]") {
@@ -278,28 +315,27 @@ TEST_CASE("statements", "[parser]") {
 
 TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
     const auto p = parse_text(
-        "sphere { center <0, 0, 0>  radius }\n"   // 1
-        "sphre { radius 1 }\n"                    // 2
-        "let = 4\n"                               // 3
-        "box { min <0,0,0> max <1,1,1>\n"         // 4
-        "let ok = (1 + 2\n"                       // 5
-        "let y = 1 +\n"                           // 6
-        "}\n"                                     // 7
-        "light { position <0,0,0> }\n"            // 8
-        "let sphere = 2 let w = 1\n"              // 9
-        "if x { } else { } else { }\n"            // 10
-        "for i in 0 .. 3 {\n");                   // 11
-    CHECK(p->errors() == std::vector<std::string>{
-                             "1:35: expected a value for 'radius', found '}'",
-                             "2:1: expected a statement, found 'sphre'",
-                             "3:5: expected a name after 'let', found '='",
-                             "5:1: expected '}' to close box block, found 'let'",
-                             "6:1: expected ')', found 'let'",
-                             "7:1: expected an expression, found '}'",
-                             "8:7: expected the light kind (point or area) after 'light', found '{'",
-                             "9:5: expected a name after 'let', found keyword 'sphere'",
-                             "10:19: 'else' without a matching 'if'",
-                             "12:1: expected '}' to close the for body, found end of file"});
+        "sphere { center <0, 0, 0>  radius }\n"  // 1
+        "sphre { radius 1 }\n"                   // 2
+        "let = 4\n"                              // 3
+        "box { min <0,0,0> max <1,1,1>\n"        // 4
+        "let ok = (1 + 2\n"                      // 5
+        "let y = 1 +\n"                          // 6
+        "}\n"                                    // 7
+        "light { position <0,0,0> }\n"           // 8
+        "let sphere = 2 let w = 1\n"             // 9
+        "if x { } else { } else { }\n"           // 10
+        "for i in 0 .. 3 {\n");                  // 11
+    CHECK(p->errors() ==
+          std::vector<std::string>{"1:35: expected a value for 'radius', found '}'",
+                                   "2:1: expected a statement, found 'sphre'",
+                                   "3:5: expected a name after 'let', found '='",
+                                   "5:1: expected '}' to close box block, found 'let'",
+                                   "6:1: expected ')', found 'let'", "7:1: expected an expression, found '}'",
+                                   "8:7: expected the light kind (point or area) after 'light', found '{'",
+                                   "9:5: expected a name after 'let', found keyword 'sphere'",
+                                   "10:19: 'else' without a matching 'if'",
+                                   "12:1: expected '}' to close the for body, found end of file"});
     const auto& d = p->diags.all();
     CHECK(d[1].help == std::vector<std::string>{"did you mean 'sphere'?"});
     REQUIRE(d[3].notes.size() == 1);
@@ -317,7 +353,8 @@ TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
     REQUIRE(assign->diags.all().size() == 1);
     CHECK(assign->diags.all()[0].help == std::vector<std::string>{"to bind a name, write 'let x = ...'"});
     CHECK(parse_text("}}} let x = 1 }")->errors() ==
-          std::vector<std::string>{"1:1: unexpected '}' with no open block", "1:15: unexpected '}' with no open block"});
+          std::vector<std::string>{"1:1: unexpected '}' with no open block",
+                                   "1:15: unexpected '}' with no open block"});
 }
 
 TEST_CASE("a lexical error found while peeking does not disturb the error being reported", "[parser]") {
@@ -376,7 +413,8 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
         const auto p = parse_text(text);
         INFO(text.substr(0, 40));
         REQUIRE(p->diags.all().size() == 1);
-        CHECK(p->diags.all()[0].message == "nesting too deep (the limit is 256 nested blocks and expressions)");
+        CHECK(p->diags.all()[0].message ==
+              "nesting too deep (the limit is 256 nested blocks and expressions)");
     }
     // Just under the limit is fine.
     CHECK(parse_text("let x = " + nested("(", "1", ")", 200))->errors().empty());

@@ -3,15 +3,14 @@
 // under AddressSanitizer.
 #pragma once
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <memory>
 #include <random>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "render/geometry.h"
 #include "render/math.h"
@@ -31,12 +30,16 @@ inline constexpr bool kSanitized = false;
 #endif
 
 // The full count in optimised builds, a tenth under ASan (the suite also runs there).
-inline int ray_budget(int full) { return kSanitized ? full / 10 : full; }
+inline int ray_budget(int full) {
+    return kSanitized ? full / 10 : full;
+}
 
 struct Rng {
     std::mt19937_64 gen;
     explicit Rng(uint64_t seed) : gen(seed) {}
-    double uniform(double lo = 0, double hi = 1) { return std::uniform_real_distribution<double>(lo, hi)(gen); }
+    double uniform(double lo = 0, double hi = 1) {
+        return std::uniform_real_distribution<double>(lo, hi)(gen);
+    }
     int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen); }
     // 10^U(lo, hi)
     double log_uniform(double lo_exp, double hi_exp) { return std::pow(10.0, uniform(lo_exp, hi_exp)); }
@@ -103,8 +106,12 @@ inline Mat4 rotate_xyz(Vec3 deg) {
     m = glm::rotate(Mat4(1.0), glm::radians(deg.z), Vec3(0, 0, 1)) * m;
     return m;
 }
-inline Mat4 translate(Vec3 t) { return glm::translate(Mat4(1.0), t); }
-inline Mat4 scale(Vec3 s) { return glm::scale(Mat4(1.0), s); }
+inline Mat4 translate(Vec3 t) {
+    return glm::translate(Mat4(1.0), t);
+}
+inline Mat4 scale(Vec3 s) {
+    return glm::scale(Mat4(1.0), s);
+}
 
 // A scene of the given shapes with `materials` plain materials (material 1 transmissive when
 // there are at least two).
@@ -125,25 +132,29 @@ inline SceneSpec random_scene(Rng& rng, int n, double size) {
         double r = size * rng.log_uniform(-3, -0.7);
         uint32_t mat = rng.uniform() < 0.2 ? 1u : 0u;
         switch (rng.integer(0, 5)) {
-        case 0: shapes.push_back(sphere(c, r, mat)); break;
-        case 1: {
-            ShapeSpec s = sphere({0, 0, 0}, 1, mat);
-            s.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0}) *
-                                scale({r, r * rng.uniform(0.2, 2), r * rng.uniform(0.2, 2)});
-            shapes.push_back(s);
-            break;
-        }
-        case 2: {
-            ShapeSpec b = box(Vec3(-r), Vec3(r) * rng.uniform(0.3, 2), mat);
-            b.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
-            shapes.push_back(b);
-            break;
-        }
-        case 3: shapes.push_back(box(c - Vec3(r), c + Vec3(r), mat)); break;
-        default:
-            shapes.push_back(triangle(c + 2 * r * rng.unit_vector(), c + 2 * r * rng.unit_vector(),
-                                      c + 2 * r * rng.unit_vector(), mat));
-            break;
+            case 0:
+                shapes.push_back(sphere(c, r, mat));
+                break;
+            case 1: {
+                ShapeSpec s = sphere({0, 0, 0}, 1, mat);
+                s.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0}) *
+                                    scale({r, r * rng.uniform(0.2, 2), r * rng.uniform(0.2, 2)});
+                shapes.push_back(s);
+                break;
+            }
+            case 2: {
+                ShapeSpec b = box(Vec3(-r), Vec3(r) * rng.uniform(0.3, 2), mat);
+                b.object_to_world = translate(c) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
+                shapes.push_back(b);
+                break;
+            }
+            case 3:
+                shapes.push_back(box(c - Vec3(r), c + Vec3(r), mat));
+                break;
+            default:
+                shapes.push_back(triangle(c + 2 * r * rng.unit_vector(), c + 2 * r * rng.unit_vector(),
+                                          c + 2 * r * rng.unit_vector(), mat));
+                break;
         }
     }
     return scene_of(std::move(shapes));
@@ -172,7 +183,8 @@ inline std::shared_ptr<MeshData> perturbed_uv_sphere(int n_theta, int n_phi, Rng
     auto m = std::make_shared<MeshData>();
     auto push = [&](double theta, double phi) {
         double r = radius * (1 + rng.uniform(0, bump));
-        Vec3 p = offset + r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+        Vec3 p = offset +
+                 r * Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
         m->vertices.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
     };
     push(0, 0);
@@ -194,13 +206,13 @@ inline std::shared_ptr<MeshData> perturbed_uv_sphere(int n_theta, int n_phi, Rng
 // An icosphere of `levels` subdivisions (20·4^levels faces, outward winding, shared vertices).
 inline std::shared_ptr<MeshData> icosphere(int levels, float radius, Vec3 center = Vec3(0)) {
     const double t = (1 + std::sqrt(5.0)) / 2;
-    std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                           {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
     for (auto& p : v) p = glm::normalize(p);
-    std::vector<glm::uvec3> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                                 {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                 {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                                 {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<glm::uvec3> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                 {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                 {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                 {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (int l = 0; l < levels; ++l) {
         std::map<std::pair<unsigned, unsigned>, unsigned> mid;
         auto midpoint = [&](unsigned a, unsigned b) {

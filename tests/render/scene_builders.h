@@ -4,7 +4,6 @@
 #pragma once
 
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <memory>
 #include <string>
@@ -171,7 +170,8 @@ struct RayProbe {
     // Asserts that the colour is finite (the film's NaN/Inf check does not see single rays).
     Color trace(Vec3 origin, Vec3 dir, uint64_t key = 1) {
         const Color c = tracer->trace_ray(render::Ray{origin, glm::normalize(dir)}, key);
-        if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z))) FAIL_CHECK("non-finite ray colour");
+        if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)))
+            FAIL_CHECK("non-finite ray colour");
         return c;
     }
 };

@@ -1,8 +1,7 @@
 // Adaptive area lights (probe corners and centre, refine where they disagree) and adaptive
 // supersampling (centre-ray prepass, full grid only at edges).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "tests/render/scene_builders.h"
@@ -110,7 +109,8 @@ TEST_CASE("adaptive supersampling refines only where neighbours differ", "[adapt
     spec.settings.aa_threshold = 1;
     const auto none = render_spec(spec);
     CHECK(none.stats.adaptive_pixels == 0);
-    CHECK(std::equal(none.film.rgb.begin(), none.film.rgb.end(), reference.film.rgb.begin(), reference.film.rgb.end()));
+    CHECK(std::equal(none.film.rgb.begin(), none.film.rgb.end(), reference.film.rgb.begin(),
+                     reference.film.rgb.end()));
 
     spec.settings.aa_threshold = 0.02;
     const auto some = render_spec(spec);

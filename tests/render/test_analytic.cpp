@@ -1,7 +1,6 @@
 // Analytic renders: scenes whose every pixel has a closed-form value, checked pixel by pixel
 // (robustness.md R40, R41; wsd-language.md §4 shading formula).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "tests/render/scene_builders.h"
@@ -215,7 +214,8 @@ TEST_CASE("R27: scaling a scene by a power of two gives the same image bit for b
         spec.shapes.push_back(sphere(Vec3(-1.1, 0, 0.5) * k, 1 * k, add_material(spec, mirror)));
         spec.shapes.push_back(sphere(Vec3(1.1, 0, 0) * k, 0.9 * k,
                                      add_material(spec, glass(1.5, {1, 0.9, 0.8}, Color(0.2, 0.1, 0) / k))));
-        spec.shapes.push_back(box(Vec3(-0.4, -1, -1.5) * k, Vec3(0.2, -0.4, -0.9) * k, add_material(spec, matte({0.3, 0.3, 0.9}))));
+        spec.shapes.push_back(box(Vec3(-0.4, -1, -1.5) * k, Vec3(0.2, -0.4, -0.9) * k,
+                                  add_material(spec, matte({0.3, 0.3, 0.9}))));
         spec.lights.push_back(area_light(Vec3(0, 4, -1) * k, Vec3(2, 0, 0) * k, Vec3(0, 0, 2) * k, 3, 3));
         spec.lights.push_back(point_light(Vec3(-3, 3, -3) * k, 0.3));
         return spec;
@@ -225,6 +225,7 @@ TEST_CASE("R27: scaling a scene by a power of two gives the same image bit for b
     for (double k : {1024.0, 1.0 / 1024}) {
         const auto scaled = render_spec(make(k));
         INFO("scale " << k);
-        CHECK(std::equal(base.film.rgb.begin(), base.film.rgb.end(), scaled.film.rgb.begin(), scaled.film.rgb.end()));
+        CHECK(std::equal(base.film.rgb.begin(), base.film.rgb.end(), scaled.film.rgb.begin(),
+                         scaled.film.rgb.end()));
     }
 }

@@ -164,7 +164,8 @@ TEST_CASE("R24 degenerate BVH builds terminate shallow and agree with brute forc
         m->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
         m->faces.assign(static_cast<size_t>(ray_budget(20000)), glm::uvec3(0, 1, 2));
         std::vector<ShapeSpec> shapes = {mesh(m)};
-        for (int k = -6; k <= 6; ++k) shapes.push_back(sphere({std::pow(10.0, k), 0, 0}, std::pow(10.0, k) / 2));
+        for (int k = -6; k <= 6; ++k)
+            shapes.push_back(sphere({std::pow(10.0, k), 0, 0}, std::pow(10.0, k) / 2));
         for (int i = 0; i < 200; ++i)
             shapes.push_back(triangle({i, 0, 2}, {i + 1, 0, 2}, {i, 1, 2}));  // all in z = 2
         auto bvh = build_ok(scene_of(shapes), true);
@@ -172,7 +173,8 @@ TEST_CASE("R24 degenerate BVH builds terminate shallow and agree with brute forc
         REQUIRE(bvh);
         Rng rng(5);
         for (int i = 0; i < 2000; ++i) {
-            Vec3 o(rng.log_uniform(-7, 7) * (rng.uniform() < 0.5 ? -1 : 1), rng.uniform(-2, 2), rng.uniform(-5, 5));
+            Vec3 o(rng.log_uniform(-7, 7) * (rng.uniform() < 0.5 ? -1 : 1), rng.uniform(-2, 2),
+                   rng.uniform(-5, 5));
             Vec3 t(rng.uniform(-1, 200), rng.uniform(-1, 1), rng.uniform(-1, 3));
             require_same(*bvh, *brute, {o, t - o}, kInf, RayFilter::All);
         }

@@ -1,10 +1,9 @@
 // Determinism (robustness.md R52): the image depends only on the scene and the seed — not on the
 // thread count, the tiling or the region rendered — and the specialised integrator gives exactly
 // the general one's image. Also cancellation and progress reporting.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
 #include <atomic>
+#include <catch2/catch.hpp>
 #include <cstring>
 #include <random>
 
@@ -37,7 +36,8 @@ SceneSpec busy_scene() {
     mirror.reflection = 0.5;
     mirror.specular = 0.4;
     spec.shapes.push_back(sphere({-1.1, 0, 0.5}, 1, add_material(spec, mirror)));
-    spec.shapes.push_back(sphere({1.1, 0, 0}, 0.9, add_material(spec, glass(1.5, {1, 0.9, 0.8}, {0.2, 0.1, 0}))));
+    spec.shapes.push_back(
+        sphere({1.1, 0, 0}, 0.9, add_material(spec, glass(1.5, {1, 0.9, 0.8}, {0.2, 0.1, 0}))));
     spec.lights.push_back(area_light({0, 4, -1}, {2, 0, 0}, {0, 0, 2}, 4, 4, LightSampling::Jittered));
     spec.lights.push_back(point_light({-3, 3, -3}, 0.3));
     return spec;
@@ -85,8 +85,8 @@ TEST_CASE("a region render equals the same pixels of the full render, bit for bi
         spec.settings.aa_threshold = 0.02;
         const auto full = render_spec(spec);
         CHECK(full.stats.nonfinite_samples == 0);
-        for (const Region r : {Region{0, 0, 45, 37}, Region{3, 5, 29, 22}, Region{17, 0, 18, 37},
-                               Region{40, 30, 45, 37}}) {
+        for (const Region r :
+             {Region{0, 0, 45, 37}, Region{3, 5, 29, 22}, Region{17, 0, 18, 37}, Region{40, 30, 45, 37}}) {
             RenderOptions o;
             o.region = r;
             const auto part = render_spec(spec, o);
@@ -160,7 +160,9 @@ TEST_CASE("camera samples traced as a packet give exactly the colours traced one
         options.specialise = specialise;
         auto tracer = wsd::render::make_tracer(*scene, options, stats);
         std::mt19937_64 gen(17);
-        auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen); };
+        auto uniform = [&](double lo, double hi) {
+            return std::uniform_real_distribution<double>(lo, hi)(gen);
+        };
         int lit = 0;
         for (int i = 0; i < 3000; ++i) {
             const double spread = i % 3 == 0 ? 0.5 : i % 3 == 1 ? 2.0 : 40.0;

@@ -98,7 +98,8 @@ TEST_CASE("counters: each effect switched on alone costs only its own kind of wo
     }
 }
 
-TEST_CASE("counters: zero weights spawn no rays even where the material kind allows them", "[effects][stats]") {
+TEST_CASE("counters: zero weights spawn no rays even where the material kind allows them",
+          "[effects][stats]") {
     auto spec = plain_scene();
     spec.materials[0].reflection = 0.0;
     spec.materials[0].specular = 1.0;  // a shiny but non-mirroring surface

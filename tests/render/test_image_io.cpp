@@ -1,16 +1,15 @@
 // Image files: extension detection, round trips through every writable format, the
 // temporary-file-and-rename discipline (nothing left behind on failure) and PFM parsing.
-#include <catch2/catch.hpp>
+#include <unistd.h>
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "render/image_io.h"
 
@@ -43,8 +42,7 @@ Film gradient(int w, int h, float lo, float hi) {
     f.width = w;
     f.height = h;
     f.rgb.resize(size_t(w) * size_t(h) * 3);
-    for (size_t i = 0; i < f.rgb.size(); ++i)
-        f.rgb[i] = lo + (hi - lo) * float(i % 97) / 96.0f;
+    for (size_t i = 0; i < f.rgb.size(); ++i) f.rgb[i] = lo + (hi - lo) * float(i % 97) / 96.0f;
     return f;
 }
 
@@ -153,11 +151,11 @@ TEST_CASE("PFM reading: both byte orders, bottom-to-top rows, malformed files", 
     REQUIRE(read_image(dir.file("g.pfm"), g, error));
     CHECK(g.rgb == std::vector<float>{0.25f, 0.25f, 0.25f, 4, 4, 4});
 
-    for (const std::string& bad : {std::string("PF\n2 2\n-1.0\n") + "abcd",   // short data
-                                   std::string("PF\n0 2\n-1.0\n"),             // zero width
-                                   std::string("PF\n-2 2\n-1.0\n"),            // negative width
+    for (const std::string& bad : {std::string("PF\n2 2\n-1.0\n") + "abcd",              // short data
+                                   std::string("PF\n0 2\n-1.0\n"),                       // zero width
+                                   std::string("PF\n-2 2\n-1.0\n"),                      // negative width
                                    std::string("PF\n2 2\n0\n") + std::string(48, '\0'),  // zero scale
-                                   std::string("PF\n99999999 99999999\n-1\n"),  // absurd size
+                                   std::string("PF\n99999999 99999999\n-1\n"),           // absurd size
                                    std::string("PF\nx 2\n-1\n"), std::string("PF")}) {
         write_bytes(dir.file("bad.pfm"), bad);
         Film f;

@@ -109,14 +109,14 @@ TEST_CASE("sphere UV at the texture centre, the sides, the poles and the seam") 
         REQUIRE(h);
         return h->s.uv;
     };
-    check_uv(uv_from({0, 0, -5}), {0.5, 0.5});   // centre faces −z
-    check_uv(uv_from({5, 0, 0}), {0.75, 0.5});   // +x is to the right of the centre seen from −z
+    check_uv(uv_from({0, 0, -5}), {0.5, 0.5});  // centre faces −z
+    check_uv(uv_from({5, 0, 0}), {0.75, 0.5});  // +x is to the right of the centre seen from −z
     check_uv(uv_from({-5, 0, 0}), {0.25, 0.5});
     Vec2 north = uv_from({0, 5, 0}), south = uv_from({0, -5, 0});
     CHECK(north.y == 0);  // north pole: top row; u is any column there, but a finite one
     CHECK(south.y == 1);
     CHECK((north.x >= 0 && north.x < 1 && south.x >= 0 && south.x < 1));
-    Vec2 seam = uv_from({0, 0, 5});              // seam at +z: u wraps to 0, never 1
+    Vec2 seam = uv_from({0, 0, 5});  // seam at +z: u wraps to 0, never 1
     CHECK(seam.x == 0);
     CHECK(seam.y == Approx(0.5));
     // Directly on the sphere map: ±0 on the seam, and a pole component rounded above 1.
@@ -146,7 +146,7 @@ TEST_CASE("triangle: barycentrics, geometric normal, uvs and both sides") {
     CHECK(h->hit.b1 == Approx(0.25));
     CHECK(h->hit.b2 == Approx(0.5));
     check_vec(h->s.p, {0.25, 0.5, 0});
-    check_vec(h->s.ng, {0, 0, 1});  // normalize(cross(v1 − v0, v2 − v0))
+    check_vec(h->s.ng, {0, 0, 1});   // normalize(cross(v1 − v0, v2 − v0))
     check_uv(h->s.uv, {0.25, 0.5});  // no uvs: (b1, b2)
     auto back = trace(*g, {0.25, 0.25, 1}, {0, 0, -1});
     REQUIRE(back);
@@ -303,7 +303,8 @@ TEST_CASE("valid hits are 0 < t < tmax") {
 
 TEST_CASE("ray filters: transmissive primitives for shadow rays") {
     // A glass sphere (material 1) in front of an opaque one, and a glass plane behind both.
-    auto g = build_ok(scene_of({sphere({0, 0, 5}, 1, 1), sphere({0, 0, 10}, 1, 0), plane({0, 0, -1}, -20, 1)}));
+    auto g =
+        build_ok(scene_of({sphere({0, 0, 5}, 1, 1), sphere({0, 0, 10}, 1, 0), plane({0, 0, -1}, -20, 1)}));
     REQUIRE(g);
     CHECK(g->has_transmissive());
     auto all = trace(*g, {0, 0, 0}, {0, 0, 1});

@@ -1,9 +1,8 @@
 // Perlin noise and its patterns: the reference permutation, agreement with an independent
 // transcription of the published algorithm, lattice zeros, range, continuity across lattice
 // planes (robustness.md R37), huge and non-finite input, and the four pattern formulas.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -21,9 +20,9 @@ namespace {
 // reference grad() bit tests yield for hashes 12..15), and the interpolation as a sum over the 8
 // cell corners of weight × dot(gradient, offset).
 double reference_noise(double x, double y, double z) {
-    static const int g[16][3] = {{1, 1, 0},  {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
-                                 {1, 0, -1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, 1},  {0, 1, -1}, {0, -1, -1},
-                                 {1, 1, 0},  {0, -1, 1}, {-1, 1, 0}, {0, -1, -1}};
+    static const int g[16][3] = {{1, 1, 0},  {-1, 1, 0},  {1, -1, 0}, {-1, -1, 0}, {1, 0, 1},  {-1, 0, 1},
+                                 {1, 0, -1}, {-1, 0, -1}, {0, 1, 1},  {0, -1, 1},  {0, 1, -1}, {0, -1, -1},
+                                 {1, 1, 0},  {0, -1, 1},  {-1, 1, 0}, {0, -1, -1}};
     const auto& perm = perlin_permutation();
     const auto p = [&](int i) { return static_cast<int>(perm[static_cast<size_t>(i & 255)]); };
     const double cell[3] = {std::floor(x), std::floor(y), std::floor(z)};
@@ -184,7 +183,8 @@ TEST_CASE("every pattern stays in [0, 1], even for non-finite points", "[noise]"
     std::uniform_real_distribution<double> coord(-50.0, 50.0);
     std::vector<Vec3> points = {{nan, 0, 0}, {inf, -inf, 0}, {1e300, 1e300, 1e300}, {0, 0, 0}};
     for (int i = 0; i < 5000; ++i) points.emplace_back(coord(rng), coord(rng), coord(rng));
-    for (PerlinKind kind : {PerlinKind::Noise, PerlinKind::Turbulence, PerlinKind::Marble, PerlinKind::Wood}) {
+    for (PerlinKind kind :
+         {PerlinKind::Noise, PerlinKind::Turbulence, PerlinKind::Marble, PerlinKind::Wood}) {
         for (const Vec3& p : points) {
             uint64_t calls = 0;
             const double c = perlin_pattern(kind, Vec3(3.0, 3.0, 3.0), 9, p, calls);

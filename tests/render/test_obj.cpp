@@ -1,9 +1,8 @@
 // The OBJ reader: the golden files in tests/golden/obj (each states its expected triangle count or
 // exact error in its leading "# expect-..." comments), plus unit tests for unwelding, fanning,
 // line endings, notes, numbers and a mutation run that must never crash (robustness.md R62).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -57,7 +56,9 @@ void check_mesh_invariants(const MeshData& m) {
         for (int k = 0; k < 3; ++k) REQUIRE(std::isfinite(v[k]));
 }
 
-ObjResult parse(std::string_view text) { return parse_obj("t.obj", text); }
+ObjResult parse(std::string_view text) {
+    return parse_obj("t.obj", text);
+}
 
 }  // namespace
 
@@ -111,7 +112,8 @@ TEST_CASE("polygons are fanned from their first corner, each triangle keeps its 
     CHECK(m.source_name == "t.obj");
 
     std::string big = "v 0 0 0\n";
-    for (int i = 0; i < 63; ++i) big += "v " + std::to_string(std::cos(i * 0.1)) + " " + std::to_string(std::sin(i * 0.1)) + " 1\n";
+    for (int i = 0; i < 63; ++i)
+        big += "v " + std::to_string(std::cos(i * 0.1)) + " " + std::to_string(std::sin(i * 0.1)) + " 1\n";
     big += "f";
     for (int i = 1; i <= 64; ++i) big += " " + std::to_string(i);
     const auto r64 = parse(big);
@@ -120,11 +122,12 @@ TEST_CASE("polygons are fanned from their first corner, each triangle keeps its 
 }
 
 TEST_CASE("corners sharing a position but not a uv or normal are unwelded", "[obj]") {
-    const auto r = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
-                         "vt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\n"
-                         "vn 0 0 1\n"
-                         "f 1/1/1 2/2/1 3/3/1\n"
-                         "f 2/2/1 4/4/1 3/4/1\n");  // vertex 3 with a second uv
+    const auto r = parse(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+        "vt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\n"
+        "vn 0 0 1\n"
+        "f 1/1/1 2/2/1 3/3/1\n"
+        "f 2/2/1 4/4/1 3/4/1\n");  // vertex 3 with a second uv
     REQUIRE(r.mesh);
     const auto& m = *r.mesh;
     check_mesh_invariants(m);
@@ -139,10 +142,11 @@ TEST_CASE("corners sharing a position but not a uv or normal are unwelded", "[ob
 }
 
 TEST_CASE("files mixing faces with and without vt or vn stay representable", "[obj]") {
-    const auto r = parse("v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\n"
-                         "vt 0.25 0.75\nvn 0 0 -1\n"
-                         "f 1/1/1 2/1/1 3/1/1\n"
-                         "f 2 4 3\n");
+    const auto r = parse(
+        "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\n"
+        "vt 0.25 0.75\nvn 0 0 -1\n"
+        "f 1/1/1 2/1/1 3/1/1\n"
+        "f 2 4 3\n");
     REQUIRE(r.mesh);
     const auto& m = *r.mesh;
     check_mesh_invariants(m);
@@ -172,14 +176,16 @@ TEST_CASE("R62: relative and forward indices", "[obj]") {
           "t.obj:5: texture coordinate index 2 out of range (the file defines 1)");
     CHECK(parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n").error ==
           "t.obj:4: normal index 1 out of range (the file defines 0)");
-    CHECK(parse("v 0 0 0\nf 1 1 99999999999999999999\n").error == "t.obj:2: index 99999999999999999999 out of range");
+    CHECK(parse("v 0 0 0\nf 1 1 99999999999999999999\n").error ==
+          "t.obj:2: index 99999999999999999999 out of range");
     // A zero-area triangle from a repeated vertex is read; geometry rejects it by its line.
     CHECK(parse("v 0 0 0\nv 1 0 0\nf 1 1 2\n").mesh);
 }
 
 TEST_CASE("line endings, comments and continuation lines", "[obj]") {
-    for (const char* text : {"v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3",
-                             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3" /* byte-order mark */}) {
+    for (const char* text : {"v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf 1 2 3\r\n",
+                             "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3",
+                             "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3" /* byte-order mark */}) {
         const auto r = parse(text);
         INFO(r.error);
         REQUIRE(r.mesh);
@@ -196,11 +202,13 @@ TEST_CASE("line endings, comments and continuation lines", "[obj]") {
 }
 
 TEST_CASE("numbers", "[obj]") {
-    const auto r = parse("v +1.5 -2 3e-2\nv 1e-400 .5 5.\nv 0 0 1 1\nv 0 0 0 0.5 0.5 0.5\nvt 0.5\nf 1 2 3 4\n");
+    const auto r =
+        parse("v +1.5 -2 3e-2\nv 1e-400 .5 5.\nv 0 0 1 1\nv 0 0 0 0.5 0.5 0.5\nvt 0.5\nf 1 2 3 4\n");
     REQUIRE(r.mesh);
     CHECK(r.mesh->vertices[0] == glm::vec3(1.5f, -2.0f, 0.03f));
     CHECK(r.mesh->vertices[1] == glm::vec3(0.0f, 0.5f, 5.0f));
-    CHECK(parse("v 1e400 0 0\n").error == "t.obj:1: number '1e400' is not finite (NaN, infinite or too large)");
+    CHECK(parse("v 1e400 0 0\n").error ==
+          "t.obj:1: number '1e400' is not finite (NaN, infinite or too large)");
     CHECK(parse("v 0 -123.5e307 0\n").error ==
           "t.obj:1: number '-123.5e307' is not finite (NaN, infinite or too large)");
     CHECK(parse("v 0 0 0.00001e-320\nv 0 0 -12e-330\nv 0 0 0\nf 1 2 3\n").mesh);
@@ -212,8 +220,10 @@ TEST_CASE("numbers", "[obj]") {
     CHECK(parse("v 1 2\n").error == "t.obj:1: 'v' needs at least 3 numbers, found 2");
     CHECK(parse("v 0 0 0\nf 1.0 1 1\n").error ==
           "t.obj:2: bad face vertex '1.0' (expected v, v/vt, v/vt/vn or v//vn)");
-    CHECK(parse("v 0 0 0\nf 1/ 1 1\n").error == "t.obj:2: bad face vertex '1/' (expected v, v/vt, v/vt/vn or v//vn)");
-    CHECK(parse("v 0 0 0\nf /1 1 1\n").error == "t.obj:2: bad face vertex '/1' (expected v, v/vt, v/vt/vn or v//vn)");
+    CHECK(parse("v 0 0 0\nf 1/ 1 1\n").error ==
+          "t.obj:2: bad face vertex '1/' (expected v, v/vt, v/vt/vn or v//vn)");
+    CHECK(parse("v 0 0 0\nf /1 1 1\n").error ==
+          "t.obj:2: bad face vertex '/1' (expected v, v/vt, v/vt/vn or v//vn)");
 }
 
 TEST_CASE("skipped statements give one note per kind", "[obj]") {
@@ -234,8 +244,12 @@ TEST_CASE("skipped statements give one note per kind", "[obj]") {
 TEST_CASE("files without faces, binary input and unreadable files", "[obj]") {
     CHECK(parse("").error == "t.obj:1: no faces: an OBJ mesh needs at least one 'f' statement");
     CHECK(parse("v 0 0 0\n\n\n").error == "t.obj:3: no faces: an OBJ mesh needs at least one 'f' statement");
-    CHECK(parse(std::string_view("v 0 0 0\nv 1\0 0 0\n", 17)).error == "t.obj:2: NUL byte: this is not a text OBJ file");
-    CHECK(parse("v 0 0 0\nf 1 2 3\x01\xff\n").error.rfind("t.obj:2: bad face vertex '3?" "?'", 0) == 0);
+    CHECK(parse(std::string_view("v 0 0 0\nv 1\0 0 0\n", 17)).error ==
+          "t.obj:2: NUL byte: this is not a text OBJ file");
+    CHECK(parse("v 0 0 0\nf 1 2 3\x01\xff\n")
+              .error.rfind("t.obj:2: bad face vertex '3?"
+                           "?'",
+                           0) == 0);
 
     const std::string missing = (fs::temp_directory_path() / "wsd_no_such_mesh.obj").string();
     const auto r = load_obj(missing);
@@ -259,9 +273,15 @@ TEST_CASE("R62: mutated OBJ text never crashes and never yields a broken mesh", 
             const size_t at = rng() % text.size();
             const char c = alphabet[rng() % (sizeof alphabet - 1)];
             switch (rng() % 3) {
-            case 0: text[at] = c; break;
-            case 1: text.insert(at, 1, c); break;
-            default: text.erase(at, 1); break;
+                case 0:
+                    text[at] = c;
+                    break;
+                case 1:
+                    text.insert(at, 1, c);
+                    break;
+                default:
+                    text.erase(at, 1);
+                    break;
             }
         }
         const auto r = parse(text);

@@ -2,9 +2,8 @@
 // exactly the hits intersect() gives each of them — same primitive, t, slot and barycentrics —
 // whether they share an origin (camera rays), start at different points, point in mixed
 // directions (traced one by one), have zero or tiny direction components, or are invalid.
-#include <catch2/catch.hpp>
-
 #include <bit>
+#include <catch2/catch.hpp>
 #include <iterator>
 #include <optional>
 
@@ -60,7 +59,8 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
         const double size = rng.log_uniform(-3, 3);
         SceneSpec spec = random_scene(rng, rng.integer(1, 300), size);
         if (s % 3 == 0)
-            spec.shapes.push_back(mesh(perturbed_uv_sphere(21, 40, rng, rng.in_box(Vec3(-size), Vec3(size)), 0, 0.4 * size)));
+            spec.shapes.push_back(
+                mesh(perturbed_uv_sphere(21, 40, rng, rng.in_box(Vec3(-size), Vec3(size)), 0, 0.4 * size)));
         if (s % 5 == 0) spec.shapes.push_back(plane(rng.unit_vector(), rng.uniform(-size, size)));
         auto g = build_ok(spec, true);
         REQUIRE(g);
@@ -69,12 +69,18 @@ TEST_CASE("packets of rays get exactly the single-ray hits on random scenes") {
             Ray rays[Geometry::kMaxPacket];
             const Ray base = random_ray(rng, size);
             switch (i % 4) {
-            case 0: make_packet(rng, base, 0, rng.log_uniform(-6, -1), rays); break;  // camera
-            case 1: make_packet(rng, base, size * rng.log_uniform(-6, -1), rng.log_uniform(-6, -1), rays); break;
-            case 2: make_packet(rng, base, size * rng.uniform(0, 1), rng.uniform(0, 0.5), rays); break;
-            default:
-                for (Ray& r : rays) r = random_ray(rng, size);  // mixed directions
-                break;
+                case 0:
+                    make_packet(rng, base, 0, rng.log_uniform(-6, -1), rays);
+                    break;  // camera
+                case 1:
+                    make_packet(rng, base, size * rng.log_uniform(-6, -1), rng.log_uniform(-6, -1), rays);
+                    break;
+                case 2:
+                    make_packet(rng, base, size * rng.uniform(0, 1), rng.uniform(0, 0.5), rays);
+                    break;
+                default:
+                    for (Ray& r : rays) r = random_ray(rng, size);  // mixed directions
+                    break;
             }
             // Both packet widths (up to 4 rays, up to 16) and every partial size.
             const int n = rng.integer(1, i % 8 < 4 ? 4 : Geometry::kMaxPacket);
@@ -117,12 +123,24 @@ TEST_CASE("packets with zero, tiny, huge or invalid direction components fall ba
         const int n = i % 2 ? 4 : Geometry::kMaxPacket;
         const int lane = rng.integer(0, n - 1), axis = rng.integer(0, 2);
         switch (i % 6) {
-        case 0: rays[lane].d[axis] = 0; break;
-        case 1: rays[lane].d[axis] = -0.0; break;
-        case 2: rays[lane].d[axis] = 1e-300; break;   // 1/d overflows a float
-        case 3: rays[lane].d *= 1e300; break;         // 1/d underflows to 0
-        case 4: rays[lane].d[axis] = nan; break;      // rejected by both
-        default: rays[lane].o[axis] = std::numeric_limits<double>::infinity(); break;
+            case 0:
+                rays[lane].d[axis] = 0;
+                break;
+            case 1:
+                rays[lane].d[axis] = -0.0;
+                break;
+            case 2:
+                rays[lane].d[axis] = 1e-300;
+                break;  // 1/d overflows a float
+            case 3:
+                rays[lane].d *= 1e300;
+                break;  // 1/d underflows to 0
+            case 4:
+                rays[lane].d[axis] = nan;
+                break;  // rejected by both
+            default:
+                rays[lane].o[axis] = std::numeric_limits<double>::infinity();
+                break;
         }
         require_same_as_single(*g, rays, n, kInf);
         require_same_as_single(*g, rays, n, -1);  // nothing within a negative limit
@@ -147,14 +165,32 @@ TEST_CASE("a packet's slab constants are RayBoxTest's, bit for bit") {
     // scalar to_float_up/down (and 1/d) for origins that round either way, floats exactly, ±0,
     // values beyond the float range and tiny ones.
     Rng rng(41);
-    const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-40, -1e-40, 1e-300, -1e-300,
-                               3.4028235677973366e38, -3.4028235677973366e38, 1e39, -1e39, 1e300, -1e300,
-                               16777217.0, -16777217.0};
+    const double specials[] = {0.0,
+                               -0.0,
+                               1.0,
+                               -1.0,
+                               0.1,
+                               -0.1,
+                               1e-40,
+                               -1e-40,
+                               1e-300,
+                               -1e-300,
+                               3.4028235677973366e38,
+                               -3.4028235677973366e38,
+                               1e39,
+                               -1e39,
+                               1e300,
+                               -1e300,
+                               16777217.0,
+                               -16777217.0};
     auto pick = [&]() -> double {
         switch (rng.integer(0, 3)) {
-        case 0: return specials[rng.integer(0, int(std::size(specials)) - 1)];
-        case 1: return static_cast<double>(static_cast<float>(rng.uniform(-10, 10)));  // a float
-        default: return rng.uniform(-1, 1) * rng.log_uniform(-45, 45);
+            case 0:
+                return specials[rng.integer(0, int(std::size(specials)) - 1)];
+            case 1:
+                return static_cast<double>(static_cast<float>(rng.uniform(-10, 10)));  // a float
+            default:
+                return rng.uniform(-1, 1) * rng.log_uniform(-45, 45);
         }
     };
     for (int i = 0; i < ray_budget(20000); ++i) {

@@ -14,9 +14,8 @@
 //   priorities do not exist. The part that applies, an ior-1 interface being invisible, is tested.
 // * R53's -march=native and -O0 builds: CI builds the suite in Release, under ASan+UBSan and with
 //   -ffp-contract=fast -mfma (.ci/); the guard below fails any -ffast-math build of the tests.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -35,14 +34,17 @@ using wsd::render::SpecItem;
 
 namespace {
 
-Vec3 to_float(const Vec3& v) { return Vec3(glm::vec3(v)); }
+Vec3 to_float(const Vec3& v) {
+    return Vec3(glm::vec3(v));
+}
 
 // A closed axis-aligned box [lo, hi] as a 12-triangle mesh with shared (float) vertices.
 wsd::render::ShapeSpec box_mesh(Vec3 lo, Vec3 hi, uint32_t material) {
     auto m = std::make_shared<wsd::render::MeshData>();
     for (int k = 0; k < 8; ++k)
         m->vertices.emplace_back(Vec3((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z));
-    const unsigned quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const unsigned quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) {
         m->faces.push_back({q[0], q[1], q[2]});
         m->faces.push_back({q[0], q[2], q[3]});
@@ -106,7 +108,8 @@ TEST_CASE("R15 R29 R30: camera inside a diffuse sphere lit from its centre: ever
             const auto result = render_spec(spec);
             double worst = 0;
             for (int y = 0; y < 32; ++y)
-                for (int x = 0; x < 32; ++x) worst = std::max(worst, rel_error(pixel(result.film, x, y), want));
+                for (int x = 0; x < 32; ++x)
+                    worst = std::max(worst, rel_error(pixel(result.film, x, y), want));
             INFO("r " << r << " at " << at.x << ": worst relative error " << worst);
             CHECK(worst <= 1e-5);
         }
@@ -132,7 +135,8 @@ TEST_CASE("R16 R29 R30: camera inside a closed 12-triangle room: every pixel ana
                     const Ray ray = camera_ray(spec, x + 0.5, y + 0.5);
                     // The exit through the box, face by face: the smallest positive slab distance.
                     double ts[3];
-                    for (int a = 0; a < 3; ++a) ts[a] = ((ray.d[a] > 0 ? hi[a] : lo[a]) - ray.o[a]) / ray.d[a];
+                    for (int a = 0; a < 3; ++a)
+                        ts[a] = ((ray.d[a] > 0 ? hi[a] : lo[a]) - ray.o[a]) / ray.d[a];
                     const int a = int(std::min_element(ts, ts + 3) - ts);
                     const Vec3 p = ray.o + ts[a] * ray.d;
                     Vec3 n(0);
@@ -141,7 +145,8 @@ TEST_CASE("R16 R29 R30: camera inside a closed 12-triangle room: every pixel ana
                     const Color got = pixel(result.film, x, y);
                     if (std::min(got.x / want.x, got.z / want.z) < 0.99) ++low;
                     bool on_edge = false;
-                    for (int b = 0; b < 3; ++b) on_edge = on_edge || (b != a && std::abs(ts[b] - ts[a]) <= 1e-6 * ts[a]);
+                    for (int b = 0; b < 3; ++b)
+                        on_edge = on_edge || (b != a && std::abs(ts[b] - ts[a]) <= 1e-6 * ts[a]);
                     if (on_edge) {
                         ++edge_pixels;  // either face's value; the < 0.99 count above still applies
                         continue;
@@ -221,7 +226,8 @@ TEST_CASE("R18: a floor under an area light sees every light cell, at heights 1e
                 const Ray ray = camera_ray(spec, x + 0.5, y + 0.5);
                 REQUIRE(ray.d.y < 0);
                 const Vec3 p = ray.o + (-ray.o.y / ray.d.y) * ray.d;
-                worst = std::max(worst, glm::length(pixel(result.film, x, y) - lit(c, 0.1, p, {0, 1, 0}, cells)));
+                worst =
+                    std::max(worst, glm::length(pixel(result.film, x, y) - lit(c, 0.1, p, {0, 1, 0}, cells)));
             }
         INFO("height " << h << ": worst difference " << worst);
         CHECK(worst <= 1e-6);
@@ -233,7 +239,7 @@ TEST_CASE("R44: a light lying flush on the floor and touching a wall gives finit
     auto spec = basic_scene(48, 48, {-2, 3, -4}, 60);
     spec.camera.look_at = {0.5, 0, 0.5};
     const uint32_t m = add_material(spec, matte(c, 0.1));
-    spec.shapes.push_back(plane({0, 1, 0}, 0, m));  // the floor, y = 0
+    spec.shapes.push_back(plane({0, 1, 0}, 0, m));    // the floor, y = 0
     spec.shapes.push_back(plane({-1, 0, 0}, -1, m));  // a wall, x = 1
     // In the floor's plane, its +x edge on the wall: cells lie in both surfaces' planes or touch them.
     spec.lights.push_back(area_light({0.5, 0, 0.5}, {1, 0, 0}, {0, 0, 1}, 8, 8, LightSampling::Uniform));
@@ -259,7 +265,8 @@ TEST_CASE("R31: a bump-mapped mirror under a white sky is white everywhere, at e
         for (const double strength : {1.0, 3.0}) {
             for (const double elevation : {90.0, 30.0, 5.0, 0.5}) {
                 const double e = elevation * std::acos(-1.0) / 180;
-                auto spec = basic_scene(32, 32, 6.0 * Vec3(0, std::sin(e), -std::cos(e)) + Vec3(0, curved ? 0 : 1e-3, 0), 40);
+                auto spec = basic_scene(
+                    32, 32, 6.0 * Vec3(0, std::sin(e), -std::cos(e)) + Vec3(0, curved ? 0 : 1e-3, 0), 40);
                 spec.camera.up = {0, 0, 1};
                 if (elevation < 80) spec.camera.up = {0, 1, 0};
                 spec.settings.background = Color(1);
@@ -275,8 +282,8 @@ TEST_CASE("R31: a bump-mapped mirror under a white sky is white everywhere, at e
                 const auto result = render_spec(spec);
                 double darkest = 2;
                 for (float v : result.film.rgb) darkest = std::min(darkest, double(v));
-                INFO((curved ? "sphere" : "plane") << " strength " << strength << " elevation " << elevation
-                                                   << ": darkest " << darkest);
+                INFO((curved ? "sphere" : "plane")
+                     << " strength " << strength << " elevation " << elevation << ": darkest " << darkest);
                 CHECK(result.stats.reflection_rays > 0);
                 CHECK(darkest >= 1 - 1e-6);
             }
@@ -338,7 +345,8 @@ TEST_CASE("R35: flipped and tilted vertex normals neither leak light through nor
     };
     // The only light below the surface: the viewer's side gets the ambient term, exactly, even
     // where flipped or strongly tilted normals give N·L > 0.
-    const Normals tilted = {up, flipped, glm::normalize(glm::vec3(1, 0.3f, 0)), glm::normalize(glm::vec3(0, 0.2f, -1))};
+    const Normals tilted = {up, flipped, glm::normalize(glm::vec3(1, 0.3f, 0)),
+                            glm::normalize(glm::vec3(0, 0.2f, -1))};
     for (const Vec3 light : {Vec3(0.5, -0.3, 4), Vec3(-4, -0.05, 0), Vec3(0, -5, 0)}) {
         const auto spec = make(light, tilted);
         const auto result = render_spec(spec);
@@ -349,7 +357,8 @@ TEST_CASE("R35: flipped and tilted vertex normals neither leak light through nor
                 ++quad_pixels;
                 if (!close_to(pixel(result.film, x, y), 0.1 * c, 1e-7)) ++leaks;  // float film
             }
-        INFO("light below at " << light.x << "," << light.y << "," << light.z << ": " << leaks << " lit pixels");
+        INFO("light below at " << light.x << "," << light.y << "," << light.z << ": " << leaks
+                               << " lit pixels");
         CHECK(quad_pixels > 400);
         CHECK(leaks == 0);
     }
@@ -390,7 +399,7 @@ TEST_CASE("R42: recursion terminates: mirrors 1e-3 apart, glass in a mirror box,
         mirror.reflection = 1;
         mirror.diffuse = 0;
         const uint32_t m = add_material(spec, mirror);
-        spec.shapes.push_back(plane({0, 0, 1}, -5e-4, m));  // z = −5e-4, facing +z
+        spec.shapes.push_back(plane({0, 0, 1}, -5e-4, m));   // z = −5e-4, facing +z
         spec.shapes.push_back(plane({0, 0, -1}, -5e-4, m));  // z = +5e-4, facing −z
         return spec;
     };
@@ -402,7 +411,8 @@ TEST_CASE("R42: recursion terminates: mirrors 1e-3 apart, glass in a mirror box,
         CHECK(pixel(result.film, 1, 2).x == Approx(0.01 * (depth + 1)).epsilon(1e-6));  // float film
     }
     // Beyond the documented maximum (256) the scene is refused, not clamped silently.
-    for (const int depth : {-1, 257, 1000000}) CHECK(build_errors(mirrors(depth)).front().item == SpecItem::Settings);
+    for (const int depth : {-1, 257, 1000000})
+        CHECK(build_errors(mirrors(depth)).front().item == SpecItem::Settings);
 
     // A glass sphere inside a closed mirror box: every path splits at the glass. With bailout w
     // the weights of one depth's rays sum to at most 1, so at most depth/w secondary rays follow
@@ -495,7 +505,8 @@ TEST_CASE("R47: camera extremes: invalid values are errors, valid extremes rende
     auto base = basic_scene(8, 8);
     base.shapes.push_back(sphere({0, 0, 0}, 1, add_material(base, matte({0.5, 0.7, 0.9}))));
     base.lights.push_back(point_light({2, 3, -4}));
-    for (const double fov : {0.0, -5.0, 180.0, 200.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    for (const double fov :
+         {0.0, -5.0, 180.0, 200.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
         auto spec = base;
         spec.camera.fov_degrees = fov;
         CHECK(build_errors(spec).front().item == SpecItem::Camera);
@@ -592,7 +603,8 @@ TEST_CASE("R59: Beer–Lambert with zero absorption, endless paths, a 1e-6 spher
     auto small = basic_scene(16, 16, {0, 0, -5e-6}, 40);
     small.settings.background = bg;
     small.shapes.push_back(sphere({0, 0, 0}, 1e-6, add_material(small, glass(1.5, Color(1), {2, 2, 2}))));
-    small.shapes.push_back(triangle({0.1, -1, 1}, {1, -1, 1}, {0.1, 1, 1}, add_material(small, glass(1.3, Color(1), {1, 1, 1}))));
+    small.shapes.push_back(triangle({0.1, -1, 1}, {1, -1, 1}, {0.1, 1, 1},
+                                    add_material(small, glass(1.3, Color(1), {1, 1, 1}))));
     const auto r = render_spec(small);
     CHECK(r.stats.refraction_rays > 0);
     const Color centre = pixel(r.film, 8, 8);

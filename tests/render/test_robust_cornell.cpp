@@ -2,13 +2,11 @@
 // through the language front end and rendered at 64×64, moved by a top-level transform (every
 // shape's object_to_world, the lights and the camera): scaled by 2^±10 it is bit-identical (R27),
 // by 10^±3 close (R28), translated by 10^5 within a stated tolerance (R29).
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <fstream>
-#include <sstream>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
 
 #include "lang/load.h"
 #include "render/image_io.h"
@@ -64,7 +62,9 @@ Difference compare(const Film& a, const Film& b) {
     Difference d;
     double sum = 0, sum_abs = 0, brightest = 0;
     for (float v : a.rgb) brightest = std::max(brightest, double(v));
-    auto to8 = [](float v) { return int(std::lround(255 * wsd::render::srgb_encode(std::clamp(double(v), 0.0, 1.0)))); };
+    auto to8 = [](float v) {
+        return int(std::lround(255 * wsd::render::srgb_encode(std::clamp(double(v), 0.0, 1.0))));
+    };
     for (size_t i = 0; i < a.rgb.size(); ++i) {
         const double diff = std::abs(double(a.rgb[i]) - double(b.rgb[i]));
         d.max_linear = std::max(d.max_linear, diff);
@@ -103,8 +103,9 @@ TEST_CASE("R28: the Cornell box scaled by 10^3 and 10^-3 stays close to the orig
     for (const double s : {1e3, 1e-3}) {
         const auto scaled = render_spec(moved(cornell, s, Vec3(0)));
         const Difference d = compare(base.film, scaled.film);
-        INFO("scale " << s << ": max " << d.max_linear << " linear, " << d.max_display << "/255 display, mean "
-                      << d.mean_relative << " of the mean, " << d.over_5_percent << " pixels off by > 5 %");
+        INFO("scale " << s << ": max " << d.max_linear << " linear, " << d.max_display
+                      << "/255 display, mean " << d.mean_relative << " of the mean, " << d.over_5_percent
+                      << " pixels off by > 5 %");
         CHECK(d.mean_relative <= 1e-3);
         CHECK(d.over_5_percent <= 4);  // silhouette pixels of 4096 (robustness.md allows a mask)
     }

@@ -1,7 +1,6 @@
 // Numerical hard cases of robustness.md Part 3 for the geometry (sections A, B, C, D, K): each
 // TEST_CASE carries its R-number. Ray counts are full in optimised builds and a tenth under ASan.
 #include <catch2/catch.hpp>
-
 #include <cstring>
 
 #include "geometry_test_util.h"
@@ -44,7 +43,8 @@ TEST_CASE("R1 R2 watertight mesh: no ray escapes through edges and vertices") {
             int escapes = 0;
             for (int i = 0; i < n; ++i) {
                 Vec3 o = offset + 0.5 * rng.uniform() * rng.unit_vector();
-                const glm::uvec3& f = m->faces[static_cast<size_t>(rng.integer(0, static_cast<int>(m->faces.size()) - 1))];
+                const glm::uvec3& f =
+                    m->faces[static_cast<size_t>(rng.integer(0, static_cast<int>(m->faces.size()) - 1))];
                 Vec3 a(m->vertices[f[0]]), b(m->vertices[f[1]]);
                 Vec3 target = i % 2 == 0 ? a : a + rng.uniform() * (b - a);  // a vertex, or on an edge
                 if (!hit_of(g, {o, target - o})) ++escapes;
@@ -66,7 +66,8 @@ TEST_CASE("R1 R2 watertight mesh: no ray escapes through edges and vertices") {
         int escapes = 0;
         for (int i = 0; i < ray_budget(100000); ++i) {
             Vec3 o = 0.5 * rng.uniform() * rng.unit_vector();
-            const glm::uvec3& f = m->faces[static_cast<size_t>(rng.integer(0, static_cast<int>(m->faces.size()) - 1))];
+            const glm::uvec3& f =
+                m->faces[static_cast<size_t>(rng.integer(0, static_cast<int>(m->faces.size()) - 1))];
             Vec3 a(m->vertices[f[0]]), b(m->vertices[f[2]]);
             Vec3 target = i % 2 == 0 ? a : a + rng.uniform() * (b - a);
             if (!hit_of(*g, {o, target - o})) ++escapes;
@@ -106,16 +107,19 @@ TEST_CASE("R4 R5 degenerate triangles never hit and never produce NaN") {
     CHECK_FALSE(intersect_triangle(RayPre(ray), bad[0], bad[1], bad[2], 0.9999, t, b1, b2));
     CHECK_FALSE(intersect_triangle(RayPre(ray), bad[0], bad[1], bad[2], kInf, t, b1, b2));
 
-    const Vec3f cases[][3] = {{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}},     // two identical vertices
-                              {{0, 0, 0}, {1, 1, 0}, {2, 2, 0}},     // collinear
-                              {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};    // a point
+    const Vec3f cases[][3] = {{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}},   // two identical vertices
+                              {{0, 0, 0}, {1, 1, 0}, {2, 2, 0}},   // collinear
+                              {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};  // a point
     Rng rng(4);
     for (const auto& tri : cases) {
         for (int i = 0; i < 2000; ++i) {
-            Vec3 target = i % 3 == 0 ? Vec3(tri[i % 3]) : Vec3(tri[0]) + rng.uniform() * (Vec3(tri[2]) - Vec3(tri[0]));
+            Vec3 target =
+                i % 3 == 0 ? Vec3(tri[i % 3]) : Vec3(tri[0]) + rng.uniform() * (Vec3(tri[2]) - Vec3(tri[0]));
             Vec3 o = target + rng.unit_vector() * rng.log_uniform(-3, 3);
             Ray r{o, target - o};
-            if (i % 5 == 0) r = Ray{Vec3(tri[0]) - Vec3(tri[2]) + Vec3(tri[0]), Vec3(tri[2]) - Vec3(tri[0]) + Vec3(0, 0, 1e-300)};
+            if (i % 5 == 0)
+                r = Ray{Vec3(tri[0]) - Vec3(tri[2]) + Vec3(tri[0]),
+                        Vec3(tri[2]) - Vec3(tri[0]) + Vec3(0, 0, 1e-300)};
             CHECK_FALSE(intersect_triangle(RayPre(r), tri[0], tri[1], tri[2], kInf, t, b1, b2));
         }
         std::vector<SpecError> errors;
@@ -300,12 +304,16 @@ TEST_CASE("R12 outgoing rays never re-hit a convex shape (spheres and boxes, any
     const int shapes = ray_budget(400), rays = 250;
     for (int k = 0; k < shapes; ++k) {
         double radius = rng.log_uniform(-4, 4);
-        ShapeSpec s = k % 3 == 2 ? box(Vec3(-radius), Vec3(radius) * rng.uniform(0.5, 2)) : sphere({0, 0, 0}, radius);
+        ShapeSpec s =
+            k % 3 == 2 ? box(Vec3(-radius), Vec3(radius) * rng.uniform(0.5, 2)) : sphere({0, 0, 0}, radius);
         if (k % 3 != 0) {
             double sc = rng.log_uniform(-4, 4);
-            Vec3 sv = k % 2 == 0 ? Vec3(sc) : Vec3(sc, sc * rng.log_uniform(-1.5, 1.5), sc * rng.log_uniform(-1.5, 1.5));
+            Vec3 sv = k % 2 == 0 ? Vec3(sc)
+                                 : Vec3(sc, sc * rng.log_uniform(-1.5, 1.5), sc * rng.log_uniform(-1.5, 1.5));
             Vec3 tr = rng.unit_vector() * rng.log_uniform(-8, 8);
-            s.object_to_world = translate(tr) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), rng.uniform(0, 360)}) * scale(sv);
+            s.object_to_world = translate(tr) *
+                                rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), rng.uniform(0, 360)}) *
+                                scale(sv);
         }
         auto g = build_ok(scene_of({s}));
         REQUIRE(g);
@@ -376,8 +384,12 @@ TEST_CASE("R12 R13 spawned rays never re-hit any shape at scales 2^-10 .. 2^10 a
             b.object_to_world = rotate_xyz({10, 20, 30});
             ShapeSpec ell = sphere({0, 0, 0}, 1);
             ell.object_to_world = translate({0, 5, 0}) * scale({1, 0.3, 2});
-            std::vector<ShapeSpec> shapes = {sphere({5, 0, 0}, 1), b, ell, mesh(icosphere(2, 1.0f, {-5, 0, 0})),
-                                             triangle({-2, -5, -2}, {2, -5, -2}, {0, -5, 2}), plane({0, 0, 1}, -9)};
+            std::vector<ShapeSpec> shapes = {sphere({5, 0, 0}, 1),
+                                             b,
+                                             ell,
+                                             mesh(icosphere(2, 1.0f, {-5, 0, 0})),
+                                             triangle({-2, -5, -2}, {2, -5, -2}, {0, -5, 2}),
+                                             plane({0, 0, 1}, -9)};
             for (auto& sh : shapes) sh.object_to_world = translate(at) * scale(Vec3(s)) * sh.object_to_world;
             auto g = build_ok(scene_of(shapes));
             REQUIRE(g);
@@ -417,7 +429,8 @@ TEST_CASE("R14 a nearby parallel surface is not skipped by the spawn offset") {
     for (const Case& c : cases) {
         Mat4 frame = translate(c.at) * rotate_xyz({10, 20, 30}) * scale(Vec3(c.L));
         auto quad = [&](double z) {
-            std::vector<ShapeSpec> q = {triangle({0, 0, z}, {1, 0, z}, {1, 1, z}), triangle({0, 0, z}, {1, 1, z}, {0, 1, z})};
+            std::vector<ShapeSpec> q = {triangle({0, 0, z}, {1, 0, z}, {1, 1, z}),
+                                        triangle({0, 0, z}, {1, 1, z}, {0, 1, z})};
             for (auto& t : q) t.object_to_world = frame;
             return q;
         };
@@ -470,8 +483,11 @@ TEST_CASE("R23 NaN and Inf rays are refused and leave valid rays unchanged") {
     auto g = build_ok(scene_of({sphere({0, 0, 5}, 1), plane({0, 1, 0}, -3)}));
     REQUIRE(g);
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const Ray bad[] = {{{nan, 0, 0}, {0, 0, 1}}, {{0, 0, 0}, {0, nan, 1}}, {{kInf, 0, 0}, {0, 0, 1}},
-                       {{0, 0, 0}, {0, 0, -kInf}}, {{0, 0, 0}, {0, 0, 0}}};
+    const Ray bad[] = {{{nan, 0, 0}, {0, 0, 1}},
+                       {{0, 0, 0}, {0, nan, 1}},
+                       {{kInf, 0, 0}, {0, 0, 1}},
+                       {{0, 0, 0}, {0, 0, -kInf}},
+                       {{0, 0, 0}, {0, 0, 0}}};
     RayStats stats;
     for (const Ray& r : bad) {
         CHECK_FALSE(g->intersect(r, kInf, stats));
@@ -502,7 +518,8 @@ TEST_CASE("R25 garbage geometry is rejected with errors, never a crash") {
             m->vertices.push_back(v);
         }
         for (int i = 0; i < 300; ++i)
-            m->faces.push_back({static_cast<unsigned>(rng.integer(0, 309)), static_cast<unsigned>(rng.integer(0, 299)),
+            m->faces.push_back({static_cast<unsigned>(rng.integer(0, 309)),
+                                static_cast<unsigned>(rng.integer(0, 299)),
                                 static_cast<unsigned>(rng.integer(0, 299))});
         std::vector<SpecError> errors;
         auto g = Geometry::build(scene_of({mesh(m)}), errors);
@@ -519,8 +536,12 @@ TEST_CASE("R27 scaling the scene by 2^±10 scales t and hit points exactly") {
     rotated_box.object_to_world = translate({-3, 1, 2}) * rotate_xyz({35.264, 0, 45});
     ShapeSpec ellipsoid = sphere({0, 0, 0}, 1);
     ellipsoid.object_to_world = translate({0, 3, -2}) * scale({2, 0.5, 1});
-    std::vector<ShapeSpec> base = {sphere({0, 0, 0}, 1),  mesh(m), rotated_box, ellipsoid,
-                                   triangle({-5, -2, 3}, {5, -2, 3}, {0, 4, 6}), plane({0.2, 1, 0.1}, -4),
+    std::vector<ShapeSpec> base = {sphere({0, 0, 0}, 1),
+                                   mesh(m),
+                                   rotated_box,
+                                   ellipsoid,
+                                   triangle({-5, -2, 3}, {5, -2, 3}, {0, 4, 6}),
+                                   plane({0.2, 1, 0.1}, -4),
                                    box({2, -3, -3}, {3, -2, -2})};
     auto scaled = [&](double s) {
         std::vector<ShapeSpec> shapes = base;
@@ -592,13 +613,16 @@ TEST_CASE("R61 rays at box edges and corners hit, with a unit adjacent-face norm
     Rng rng(61);
     for (bool rotated : {false, true}) {
         ShapeSpec b = box({-1, -2, -0.5}, {1, 2, 0.5});
-        if (rotated) b.object_to_world = translate({-400, -350, 990}) * rotate_xyz({35.264, 0, 0}) * rotate_xyz({0, 0, 45});
+        if (rotated)
+            b.object_to_world =
+                translate({-400, -350, 990}) * rotate_xyz({35.264, 0, 0}) * rotate_xyz({0, 0, 45});
         auto g = build_ok(scene_of({b}));
         REQUIRE(g);
         int misses = 0;
         for (int i = 0; i < ray_budget(20000); ++i) {
             // A corner, or a point on an edge, of the object box.
-            Vec3 p((rng.uniform() < 0.5) ? -1 : 1, (rng.uniform() < 0.5) ? -2 : 2, (rng.uniform() < 0.5) ? -0.5 : 0.5);
+            Vec3 p((rng.uniform() < 0.5) ? -1 : 1, (rng.uniform() < 0.5) ? -2 : 2,
+                   (rng.uniform() < 0.5) ? -0.5 : 0.5);
             int free_axis = rng.integer(0, 3);
             if (free_axis < 3) p[free_axis] = rng.uniform(b.box_min[free_axis], b.box_max[free_axis]);
             Vec3 target = Vec3(b.object_to_world * glm::dvec4(p, 1));

@@ -85,7 +85,8 @@ TEST_CASE("R19: a refracted ray enters and leaves the same sphere: exactly two i
         worst_exit = std::max(worst_exit, std::abs(glm::length(s2.p - c) - r) / r);
         worst_angle = std::max(worst_angle, std::acos(std::min(1.0, glm::dot(t2, f2.refracted))));
     }
-    INFO("worst exit-point error " << worst_exit << " r, worst exit-direction error " << worst_angle << " rad");
+    INFO("worst exit-point error " << worst_exit << " r, worst exit-direction error " << worst_angle
+                                   << " rad");
     CHECK(paths == ray_budget(20000));
     CHECK(wrong == 0);
     CHECK(worst_exit <= 1e-5);
@@ -114,8 +115,10 @@ TEST_CASE("R22: axis-aligned rays need no more traversal work than random rays")
         const Vec3 to = rng.in_box(Vec3(-1.9), Vec3(1.9)) + Vec3(0.1, -0.2, 0.3);
         if (g->intersect({from, to - from}, kInf, random_stats)) ++random_hits;
     }
-    const double axis_nodes = double(axis_stats.box_tests) / n, random_nodes = double(random_stats.box_tests) / n;
-    const double axis_tris = double(axis_stats.triangle_tests) / n, random_tris = double(random_stats.triangle_tests) / n;
+    const double axis_nodes = double(axis_stats.box_tests) / n,
+                 random_nodes = double(random_stats.box_tests) / n;
+    const double axis_tris = double(axis_stats.triangle_tests) / n,
+                 random_tris = double(random_stats.triangle_tests) / n;
     INFO("per ray: axis-aligned " << axis_nodes << " node tests, " << axis_tris << " triangle tests; random "
                                   << random_nodes << " node tests, " << random_tris << " triangle tests");
     CHECK(axis_hits > n / 2);

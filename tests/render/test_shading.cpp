@@ -1,9 +1,8 @@
 // Shading rules: Fresnel and Snell (robustness.md R38, R39), Phong specular without NaN (R58),
 // ambient-only materials (R64), two-sided lighting, glass shadows, depth and bailout limits,
 // ray counters, effect analysis and build_scene validation.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
@@ -84,7 +83,8 @@ TEST_CASE("R64: an ambient-only material renders exactly color × ambient", "[sh
     CHECK(close_to(pixel(result.film, 8, 8), expected, 1e-7));
 }
 
-TEST_CASE("R58: Phong specular is finite for every shininess and 0 behind the mirror direction", "[shading]") {
+TEST_CASE("R58: Phong specular is finite for every shininess and 0 behind the mirror direction",
+          "[shading]") {
     for (double shininess : {0.5, 1.7, 50.0, 1e6}) {
         auto spec = basic_scene(25, 25);  // odd: the centre pixel's ray is the optical axis
         auto m = matte({0.5, 0.5, 0.5}, 0.1);
@@ -186,7 +186,8 @@ TEST_CASE("effect analysis names the effects and the shapes that call for them",
     CHECK(std::find(result.effects.begin(), result.effects.end(), "refraction") != result.effects.end());
 }
 
-TEST_CASE("R45 R46 R47 R63: build_scene rejects cameras and lights without a frame", "[shading][validation]") {
+TEST_CASE("R45 R46 R47 R63: build_scene rejects cameras and lights without a frame",
+          "[shading][validation]") {
     auto base = basic_scene(8, 8);
     base.shapes.push_back(sphere({0, 0, 0}, 1, add_material(base, matte({1, 1, 1}))));
     auto expect_error = [](const wsd::render::SceneSpec& spec, SpecItem item) {

@@ -2,11 +2,10 @@
 // inside it exactly as a full BVH traversal does, the culling really removes primitives, and a
 // degenerate shaft is refused rather than trusted.
 #include <catch2/catch.hpp>
+#include <limits>
 
 #include "geometry_test_util.h"
 #include "render/shaft.h"
-
-#include <limits>
 
 using namespace wsd::render;
 using namespace wsd::render::test;
@@ -28,7 +27,9 @@ Quad random_quad(Rng& rng, double size) {
 
 }  // namespace
 
-TEST_CASE("shadow rays inside a shaft: the gathered primitives give the full traversal's answer, through glass too") {
+TEST_CASE(
+    "shadow rays inside a shaft: the gathered primitives give the full traversal's answer, through glass "
+    "too") {
     Rng rng(20261124);
     int compared = 0, blocked = 0, used = 0, glass_hits = 0;
     for (int scene = 0; scene < 40; ++scene) {
@@ -153,8 +154,9 @@ SceneSpec surfaces_scene(Rng& rng, double size) {
         m->faces = {{0, 1, 2}, {0, 2, 3}};
         ShapeSpec quad = mesh(m, 0);
         const Vec3 shift = rng.in_box(Vec3(-size), Vec3(size));
-        quad.object_to_world = k < 2 ? translate(shift) * rotate_xyz({90.0 * k, 0, 0})
-                                     : translate(shift) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
+        quad.object_to_world =
+            k < 2 ? translate(shift) * rotate_xyz({90.0 * k, 0, 0})
+                  : translate(shift) * rotate_xyz({rng.uniform(0, 360), rng.uniform(0, 360), 0});
         spec.shapes.push_back(quad);
     }
     spec.shapes.push_back(plane(rng.unit_vector(), size * rng.uniform(-1, 1), 0));
@@ -287,8 +289,8 @@ TEST_CASE("a sphere blocks a whole shaft only when every ray from the origin to 
 
 TEST_CASE("a shaft whose apex touches the light's plane is refused") {
     Shaft shaft;
-    CHECK_FALSE(shaft.init({0, 0, 0}, 1e-9, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}));    // in the plane
+    CHECK_FALSE(shaft.init({0, 0, 0}, 1e-9, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}));     // in the plane
     CHECK_FALSE(shaft.init({0, 1e-3, 0}, 0.01, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}));  // ball crosses it
-    CHECK_FALSE(shaft.init({0, 1, 0}, 0, {0, 0, 0}, {1, 0, 0}, {2, 0, 0}));           // parallel edges
+    CHECK_FALSE(shaft.init({0, 1, 0}, 0, {0, 0, 0}, {1, 0, 0}, {2, 0, 0}));          // parallel edges
     CHECK(shaft.init({0, 1, 0}, 1e-9, {-1, 0, -1}, {2, 0, 0}, {0, 0, 2}));
 }

@@ -1,11 +1,10 @@
 // Whole renders of surface features: an image-textured sphere seen head-on shows the texture's
 // centre at the image centre, upright and not mirrored; a bumpy mirror stays finite and has no
 // black speckles (no bent normal sends a reflected ray into its own surface).
-#include <catch2/catch.hpp>
-
-#include <filesystem>
-
 #include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
 
 #include "render/image_io.h"
 #include "scene_builders.h"
@@ -29,17 +28,21 @@ std::string write_marked_texture() {
             p[0] = float(c.x), p[1] = float(c.y), p[2] = float(c.z);
         }
     const std::string path =
-        (std::filesystem::temp_directory_path() / ("wsd-marked-" + std::to_string(::getpid()) + ".png")).string();
+        (std::filesystem::temp_directory_path() / ("wsd-marked-" + std::to_string(::getpid()) + ".png"))
+            .string();
     std::string error;
     REQUIRE(wsd::render::write_image(path, f, error));
     return path;
 }
 
-bool near(const Color& a, const Color& b) { return close_to(a, b, 0.02); }
+bool near(const Color& a, const Color& b) {
+    return close_to(a, b, 0.02);
+}
 
 }  // namespace
 
-TEST_CASE("a textured sphere seen head-on shows the texture's centre, upright and unmirrored", "[texture][render]") {
+TEST_CASE("a textured sphere seen head-on shows the texture's centre, upright and unmirrored",
+          "[texture][render]") {
     const std::string path = write_marked_texture();
     auto spec = basic_scene(65, 65, {0, 0, -5}, 30);
     auto m = matte(Color(1), 1.0);  // ambient 1, no lights: the pixel is the texel

@@ -1,17 +1,16 @@
 // Textures: image decoding (sRGB curve, HDR), the bilinear lookup and its addressing at every
 // awkward uv (robustness.md T14, R49; run under ASan in CI), the image cache and its errors,
 // checker cells, Perlin colours and the bump normal (R33, R34).
-#include <catch2/catch.hpp>
+#include <stb_image_write.h>
+#include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <random>
-
-#include <glm/gtc/matrix_transform.hpp>
-#include <stb_image_write.h>
-#include <unistd.h>
 
 #include "render/noise.h"
 #include "render/texture.h"
@@ -76,7 +75,8 @@ SurfaceHit hit_at(Vec3 p_object) {
 }  // namespace
 
 TEST_CASE("8-bit values decode through the exact sRGB curve", "[texture]") {
-    for (int v = 0; v < 256; ++v) REQUIRE(srgb8_to_linear(static_cast<uint8_t>(v)) == Approx(srgb_formula(v)).margin(1e-7));
+    for (int v = 0; v < 256; ++v)
+        REQUIRE(srgb8_to_linear(static_cast<uint8_t>(v)) == Approx(srgb_formula(v)).margin(1e-7));
     CHECK(srgb8_to_linear(0) == 0.0f);
     CHECK(srgb8_to_linear(255) == 1.0f);
     CHECK(srgb8_to_linear(10) == Approx(10 / 255.0 / 12.92));  // the linear segment
@@ -147,8 +147,20 @@ TEST_CASE("R49: lookups at extreme uv stay inside the image", "[texture]") {
     const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double den = std::numeric_limits<double>::denorm_min();
-    const double values[] = {0.0, -0.0, 1.0, std::nextafter(1.0, 0.0), std::nextafter(1.0, 2.0), -den, den,
-                             1e30, -1e30, 1e300, inf, -inf, nan, 0.5};
+    const double values[] = {0.0,
+                             -0.0,
+                             1.0,
+                             std::nextafter(1.0, 0.0),
+                             std::nextafter(1.0, 2.0),
+                             -den,
+                             den,
+                             1e30,
+                             -1e30,
+                             1e300,
+                             inf,
+                             -inf,
+                             nan,
+                             0.5};
     for (bool wrap_v : {false, true})
         for (double u : values)
             for (double v : values) {
@@ -355,7 +367,8 @@ TEST_CASE("R33: bump: zero strength and constant height are identities", "[textu
     CHECK(bump_normal(*tex, 1.0, s, n, Mat4(1.0), stats) == n);
 }
 
-TEST_CASE("R34: bump: extreme strength, frequency and non-finite input stay unit and finite", "[texture][bump]") {
+TEST_CASE("R34: bump: extreme strength, frequency and non-finite input stay unit and finite",
+          "[texture][bump]") {
     RayStats stats;
     const double inf = std::numeric_limits<double>::infinity();
     const double nan = std::numeric_limits<double>::quiet_NaN();
