@@ -1,6 +1,6 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scene, cycles and depth), and block statements handed to lowering.
+// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block statements handed to lowering.
 // Expressions are in evaluate.cpp.
 #include "lang/interpreter.h"
 
@@ -86,7 +86,15 @@ const Interpreter::Binding* Interpreter::Scope::find(std::string_view name) cons
 
 void Interpreter::Scope::clear() {
     bindings.clear();
+    included.clear();
     if (!index.empty()) index.clear();  // clear() on an empty map still wipes its buckets
+}
+
+const Interpreter::Included* Interpreter::visible_include(const std::string& key) const {
+    for (size_t i = scope_count_; i-- > 0;)
+        for (const Included& inc : scopes_[i].included)
+            if (inc.key == key) return &inc;
+    return nullptr;
 }
 
 void Interpreter::push_scope() {
@@ -163,7 +171,7 @@ void Interpreter::run(const Program& program) {
     std::string key = canonical_path(sources_.file(program.file).path);
     include_stack_.push_back(key);
     include_stack_files_.push_back(program.file);
-    included_.insert(key);
+    scopes_[scope_count_ - 1].included.push_back({key, Span{program.file, 0, 0}});
     exec_all(program.statements);
     include_stack_.pop_back();
     include_stack_files_.pop_back();
@@ -317,14 +325,26 @@ void Interpreter::exec_include(const Stmt& stmt) {
         abort();
         return;
     }
-    if (included_.count(key)) return;  // once per scene
+    // Once per scope: the names of a file included in this scope or an enclosing one are visible
+    // already. Anywhere else (a loop body run again, a sibling block) the include runs again.
+    if (const Included* first = visible_include(key)) {
+        auto adds = adds_objects_.find(key);
+        if (adds != adds_objects_.end() && adds->second) {
+            Diagnostic& d = diags_.warning(at, "include of '" + stmt.name +
+                                                   "' skipped: it was already included in this scope or an "
+                                                   "enclosing one, so its objects are not added again");
+            if (first->site.end > first->site.begin) d.notes.push_back({first->site, "first included here"});
+        }
+        return;
+    }
     std::string text, reason;
     if (!read_file(path, text, reason)) {
         diags_.error(at, "cannot read include file '" + path + "': " + reason);
         abort();
         return;
     }
-    included_.insert(key);
+    scopes_[scope_count_ - 1].included.push_back({key, at});
+    const size_t objects_before = scene_.primitives();
     const uint32_t file = sources_.add(path, std::move(text));
     diags_.push_include(at);
     const size_t errors_before = diags_.error_count();
@@ -339,6 +359,7 @@ void Interpreter::exec_include(const Stmt& stmt) {
         chain_ = chain_->parent;
         include_stack_.pop_back();
         include_stack_files_.pop_back();
+        adds_objects_[key] = scene_.primitives() > objects_before;
     } else {
         abort();  // its definitions are missing: running on would only cascade
     }

@@ -50,9 +50,15 @@ private:
         Span span;
         std::optional<Value> value;  // empty: its definition failed (already reported)
     };
+    // A file included in this scope: a second include of it here or in an enclosed scope is skipped.
+    struct Included {
+        std::string key;  // canonical path
+        Span site;        // the include that ran it
+    };
     struct Scope {
         std::vector<Binding> bindings;
         std::unordered_map<std::string_view, size_t> index;  // built once a scope grows large
+        std::vector<Included> included;
         const Binding* find(std::string_view name) const;
         void clear();
     };
@@ -122,10 +128,11 @@ private:
     // includes
     IncludeChain chain_;
     int include_depth_ = 0;
-    std::vector<std::string> include_stack_;          // canonical paths of the files being run
-    std::vector<uint32_t> include_stack_files_;       // their file ids (for the cycle message)
-    std::set<std::string> included_;                  // canonical paths already run
-    std::vector<std::unique_ptr<Program>> programs_;  // included ASTs: bindings point into them
+    std::vector<std::string> include_stack_;     // canonical paths of the files being run
+    std::vector<uint32_t> include_stack_files_;  // their file ids (for the cycle message)
+    const Included* visible_include(const std::string& key) const;
+    std::unordered_map<std::string, bool> adds_objects_;  // canonical path -> its run added objects
+    std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
     ObjCache obj_cache_;
 };
 

@@ -426,7 +426,7 @@ TEST_CASE("a 100,000-sphere loop evaluates", "[interpreter][scale]") {
     CHECK(l->scene->spec.shapes.back().center == glm::dvec3(99, 999, 0));
 }
 
-TEST_CASE("include runs a file in the scope where it stands, once per scene", "[interpreter][include]") {
+TEST_CASE("include runs a file in the scope where it stands, once per scope", "[interpreter][include]") {
     TempDir dir;
     dir.write("lib/materials.wsdi", "let red = material { color <1, 0, 0> }\ninclude \"shapes.wsdi\"\n");
     dir.write("lib/shapes.wsdi", "sphere { center <0, 0, 0> radius 1 material red }\n");
@@ -434,7 +434,7 @@ TEST_CASE("include runs a file in the scope where it stands, once per scene", "[
         dir.write("main.wsd", std::string(kCamera) +
                                   "include \"lib/materials.wsdi\"\n"
                                   "include \"lib/materials.wsdi\"\n"  // skipped: already included
-                                  "include \"lib/shapes.wsdi\"\n"     // skipped too
+                                  "include \"lib/shapes.wsdi\"\n"     // skipped too, with a warning
                                   "sphere { center <0, 2, 0> radius 1 material red }\n");
     auto l = load_file(main);
     REQUIRE(l->errors().empty());
@@ -528,4 +528,56 @@ TEST_CASE("includes nest at most 64 deep", "[interpreter][include][limits]") {
     dir.write("g64.wsdi", "let done = 1\n");
     l = load_file((dir.path / "g0.wsdi").string(), true);
     CHECK(l->errors().empty());
+}
+
+TEST_CASE("an include runs again in each loop iteration and in sibling scopes", "[interpreter][include]") {
+    TempDir dir;
+    dir.write("place.wsdi", "sphere { center <i, 0, 0> radius 0.4 material material { } }\n");
+    const std::string main =
+        dir.write("main.wsd", std::string(kCamera) + "for i in 0 .. 3 { include \"place.wsdi\" }\n");
+    auto l = load_file(main);
+    REQUIRE(l->errors().empty());
+    REQUIRE(l->scene);
+    CHECK(l->scene->summary.objects == 3);
+    CHECK(l->scene->spec.shapes.back().center == glm::dvec3(2, 0, 0));
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+}
+
+TEST_CASE("an include after an if-scoped include of the same file defines its names",
+          "[interpreter][include]") {
+    TempDir dir;
+    dir.write("lib.wsdi", "let size = 3\n");
+    const std::string main = dir.write(
+        "main.wsd", "let c = true\nif c { include \"lib.wsdi\" }\ninclude \"lib.wsdi\"\nlet s = size\n");
+    auto l = load_file(main, true);
+    CHECK(l->errors().empty());
+}
+
+TEST_CASE("an include of a file already included in an enclosing scope is skipped",
+          "[interpreter][include]") {
+    TempDir dir;
+    dir.write("lib.wsdi", "let size = 3\n");
+    dir.write("obj.wsdi", "sphere { center <0, 0, 0> radius 1 material material { } }\n");
+    const std::string main =
+        dir.write("main.wsd", std::string(kCamera) +
+                                  "include \"lib.wsdi\"\n"
+                                  "include \"obj.wsdi\"\n"
+                                  "if true { include \"lib.wsdi\"  include \"obj.wsdi\" }\n");
+    auto l = load_file(main);
+    REQUIRE(l->errors().empty());  // lib.wsdi would rebind 'size' in the same scope if it ran again
+    REQUIRE(l->scene);
+    CHECK(l->scene->summary.objects == 1);
+    // Only the skipped include that would have added objects warns, with a note at the first.
+    const auto warnings = messages(l->diags, l->sources, Severity::Warning);
+    REQUIRE(warnings.size() == 1);
+    CHECK(
+        warnings[0] ==
+        "4:39: include of 'obj.wsdi' skipped: it was already included in this scope or an enclosing one, so "
+        "its objects are not added again");
+    const Diagnostic* w = nullptr;
+    for (const Diagnostic& d : l->diags.all())
+        if (d.severity == Severity::Warning) w = &d;
+    REQUIRE(w);
+    REQUIRE(w->notes.size() == 1);
+    CHECK(where(l->sources, w->notes[0].span) == "3:9");
 }
