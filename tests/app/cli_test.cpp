@@ -149,3 +149,49 @@ TEST_CASE("check --effects names the effects and the objects that call for each"
     const std::string plain = run_wsd(dir, "check s.wsd").out;
     CHECK(std::count(plain.begin(), plain.end(), '\n') == 1);
 }
+
+TEST_CASE("an unknown command is named, with a did-you-mean; wsd help [COMMAND] works", "[cli]") {
+    TempDir dir;
+    write_file(dir / "x.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "rendr x.wsd");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'rendr'; did you mean 'render'?") != std::string::npos);
+    r = run_wsd(dir, "frobnicate");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'frobnicate'") != std::string::npos);
+    r = run_wsd(dir, "");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("a command is required: check ast render") != std::string::npos);
+
+    r = run_wsd(dir, "help");
+    CHECK(r.status == 0);
+    for (const char* command : {"check", "ast", "render", "diff", "bench", "merge"})
+        CHECK(r.out.find(command) != std::string::npos);
+    r = run_wsd(dir, "help render");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("Usage: wsd render") != std::string::npos);
+    CHECK(r.out.find("--supersamples") != std::string::npos);
+    r = run_wsd(dir, "help rendr");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'rendr'; did you mean 'render'?") != std::string::npos);
+}
+
+TEST_CASE("an integer option given something else says it is not an integer", "[cli]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    for (const char* option :
+         {"--width", "--height", "--supersamples", "--light-samples", "--max-depth", "--seed", "--threads"}) {
+        const RunResult r = run_wsd(dir, std::string("render s.wsd ") + option + " abc");
+        CHECK(r.status == 2);
+        CHECK(r.err.find(std::string(option) + ": 'abc' is not an integer") != std::string::npos);
+    }
+    for (const char* option : {"--repeat", "--reference-supersamples", "--reference-light-samples",
+                               "--reference-depth", "--threads", "--width", "--height"}) {
+        const RunResult r = run_wsd(dir, std::string("bench s.wsd ") + option + " 1.5");
+        CHECK(r.status == 2);
+        CHECK(r.err.find(std::string(option) + ": '1.5' is not an integer") != std::string::npos);
+    }
+    const RunResult r = run_wsd(dir, "render s.wsd --width 0");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--width: 0 is not in the range 1 to 100000") != std::string::npos);
+}
