@@ -25,6 +25,11 @@ bool parse_whole_int(std::string_view text, long long& value) {
     return ec == std::errc() && end == text.data() + text.size();
 }
 
+// Thrown out of the load when --width/--height make the image larger than 2^28 pixels.
+struct OversizedImage {
+    int width = 0, height = 0;
+};
+
 struct TileRequest {
     int index = 0, count = 0;              // --tile I/N
     std::optional<render::Region> region;  // --region (or the tile's rows once the size is known)
@@ -129,17 +134,27 @@ int run_render(const RenderArgs& args) {
     lang::LoadOptions load_options;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
-    load_options.adjust = [&](render::SceneSpec& spec) { args.overrides.apply(spec); };
+    load_options.adjust = [&](render::SceneSpec& spec) {
+        args.overrides.apply(spec);
+        // A size that only the command line makes too large is a usage error, not the scene's;
+        // it stops the load before anything is built.
+        const render::Settings& s = spec.settings;
+        if ((args.overrides.width || args.overrides.height) &&
+            static_cast<long long>(s.width) * s.height > max_image_pixels)
+            throw OversizedImage{s.width, s.height};
+    };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_scene_file(args.scene, load_options, sources, loaded);
-        status != exit_code::ok)
-        return status;
+    try {
+        if (const int status = load_scene_file(args.scene, load_options, sources, loaded);
+            status != exit_code::ok)
+            return status;
+    } catch (const OversizedImage& size) {
+        return fail(exit_code::usage, "image size " + std::to_string(size.width) + "x" +
+                                          std::to_string(size.height) + " exceeds 2^28 pixels");
+    }
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
     const render::Settings& settings = loaded->spec.settings;
-    if (static_cast<long long>(settings.width) * settings.height > max_image_pixels)
-        return fail(exit_code::usage, "image size " + std::to_string(settings.width) + "x" +
-                                          std::to_string(settings.height) + " exceeds 2^28 pixels");
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
     CancelOnSignal signals;
