@@ -44,8 +44,9 @@ int run_check(const CheckArgs& args) {
         const int status = load_scene_file(path, options, sources, scene);
         if (status == exit_code::ok) {
             const lang::CheckSummary& s = scene->summary;
-            std::cout << display_path(path) << ": ok \u2014 " << s.objects << " objects, " << s.triangles
-                      << " triangles, " << s.lights << " lights, " << s.materials << " materials\n";
+            std::cout << display_path(path) << ": ok \u2014 " << counted(s.objects, "object") << ", "
+                      << counted(s.triangles, "triangle") << ", " << counted(s.lights, "light") << ", "
+                      << counted(s.materials, "material") << "\n";
             if (args.effects) print_effects(*scene, std::cout);
         }
         std::cout << std::flush;

@@ -95,7 +95,8 @@ bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& e
         const int y1 = static_cast<int>(tile.index * h / tile.count);
         if (y0 == y1) {
             error = "--tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) +
-                    ": the image has only " + std::to_string(s.height) + " rows, so this tile is empty";
+                    ": the image has only " + counted(static_cast<uint64_t>(s.height), "row") +
+                    ", so this tile is empty";
             return false;
         }
         tile.region = render::Region{0, y0, s.width, y1};

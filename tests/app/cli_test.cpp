@@ -60,8 +60,8 @@ TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
     CHECK(r.status == 0);
     CHECK(r.err.empty());
     const std::regex line(
-        "s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 lights, 2 materials\n"
-        "frag\\.wsdi: ok \xE2\x80\x94 1 objects, 0 triangles, 0 lights, 1 materials\n");
+        "s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 light, 2 materials\n"
+        "frag\\.wsdi: ok \xE2\x80\x94 1 object, 0 triangles, 0 lights, 1 material\n");
     CHECK(std::regex_match(r.out, line));
 }
 
