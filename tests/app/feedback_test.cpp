@@ -2,6 +2,9 @@
 // scene) causes, counts in messages, the "wrote" line, statistics that add up, warnings on demand,
 // and objects named by where they are written.
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <regex>
+#include <sstream>
 
 #include "app_test_util.h"
 
@@ -51,4 +54,49 @@ TEST_CASE("counts in messages agree with their nouns", "[feedback]") {
     r = run_wsd(dir, "merge t1.pfm t2.pfm -o m.png");
     CHECK(r.status == 1);
     CHECK(r.err.find("(missing tile 3/3)") != std::string::npos);
+}
+
+namespace {
+
+// A number after "KEY": in a JSON text, or -1 if absent.
+double json_number(const std::string& json, const std::string& key) {
+    std::smatch m;
+    if (!std::regex_search(json, m, std::regex("\"" + key + "\": ([-0-9.eE+]+)"))) return -1;
+    return std::stod(m[1].str());
+}
+
+// An OBJ grid of n×n quads (2n² triangles): enough geometry that building it takes measurable time.
+std::string obj_grid(int n) {
+    std::ostringstream out;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) out << "v " << x << " " << y << " " << (x * y) % 7 << "\n";
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const int a = y * (n + 1) + x + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+            out << "f " << a << " " << b << " " << c << " " << d << "\n";
+        }
+    return out.str();
+}
+
+}  // namespace
+
+TEST_CASE("render --stats-json: parse, build and render times add up to no more than the wall time",
+          "[render][feedback]") {
+    TempDir dir;
+    write_file(dir / "grid.obj", obj_grid(400));
+    write_file(dir / "s.wsd",
+               "settings { width 2  height 2 }\ncamera { position <200,200,-500> look_at <200,200,0> }\n"
+               "light point { position <0,0,-100> }\n"
+               "mesh { file \"grid.obj\"  material { color <1,1,1> } }\n");
+    const auto start = std::chrono::steady_clock::now();
+    const RunResult r = run_wsd(dir, "render s.wsd -q --stats-json s.json");
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    REQUIRE(r.status == 0);
+    const std::string json = read_file(dir / "s.json");
+    const double parse = json_number(json, "parse_seconds"), build = json_number(json, "build_seconds"),
+                 render = json_number(json, "render_seconds");
+    REQUIRE(parse >= 0);
+    REQUIRE(build > 0);
+    REQUIRE(render >= 0);
+    CHECK(parse + build + render <= wall);
 }
