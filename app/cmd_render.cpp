@@ -2,6 +2,8 @@
 // whole image or one tile/region with progress and cancellation, and writes the image (or tile
 // file) atomically, then the statistics. Usage errors are found before any rendering starts.
 #include <charconv>
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 
@@ -111,9 +113,35 @@ bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& e
     return true;
 }
 
+// "7.3 s" under a minute, "2:05" (as progress shows durations) from a minute on.
+std::string short_duration(double seconds) {
+    if (seconds >= 60) return format_duration(seconds);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f s", seconds);
+    return buf;
+}
+
+// The line that tells where the image went: "wrote NAME (W×H, T)", and for a tile or region
+// which part of which image.
+std::string wrote_line(const std::string& output, const TileRequest& tile, const render::Settings& s,
+                       double seconds) {
+    const std::string size = std::to_string(s.width) + "\u00d7" + std::to_string(s.height);
+    std::string what = size;
+    if (tile.count > 0) {
+        what = "tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) + ": rows " +
+               std::to_string(tile.region->y0) + " to " + std::to_string(tile.region->y1 - 1) + " of " + size;
+    } else if (tile.region) {
+        const render::Region& r = *tile.region;
+        what = "region " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) +
+               "," + std::to_string(r.y1) + " of " + size;
+    }
+    return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
     TileRequest tile;
     std::string error;
     if (!args.tile.empty() && !args.region.empty())
@@ -193,6 +221,12 @@ int run_render(const RenderArgs& args) {
     } else if (!render::write_image(output, result.film, error)) {
         return fail(exit_code::io, error);
     }
+    if (!args.quiet)
+        std::cerr << wrote_line(
+                         output, tile, settings,
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+                  << '\n'
+                  << std::flush;
 
     if (args.stats || !args.stats_json.empty()) {
         RenderReport report;

@@ -100,3 +100,25 @@ TEST_CASE("render --stats-json: parse, build and render times add up to no more 
     REQUIRE(render >= 0);
     CHECK(parse + build + render <= wall);
 }
+
+TEST_CASE("render says on stderr what it wrote, unless --quiet", "[render][feedback]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "render s.wsd");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+    CHECK(std::regex_search(r.err, std::regex("(^|\n)wrote s\\.png \\(16\xC3\x97"
+                                              "16, [0-9]+\\.[0-9] s\\)\n$")));
+    r = run_wsd(dir, "render s.wsd --tile 2/4");
+    REQUIRE(r.status == 0);
+    CHECK(std::regex_search(r.err,
+                            std::regex("wrote s\\.tile-2-of-4\\.pfm \\(tile 2/4: rows 4 to 7 of 16\xC3\x97"
+                                       "16, [0-9.]+ s\\)\n$")));
+    r = run_wsd(dir, "render s.wsd --region 1,2,5,6 -o r.png");
+    REQUIRE(r.status == 0);
+    CHECK(std::regex_search(r.err, std::regex("wrote r\\.png \\(region 1,2,5,6 of 16\xC3\x97"
+                                              "16, [0-9.]+ s\\)\n$")));
+    r = run_wsd(dir, "render s.wsd -o q.png --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.empty());
+}
