@@ -33,6 +33,14 @@ CLI::Validator integer_in(long long lo, long long hi) {
         "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
+void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
+    cmd.add_option("-D,--define", input.defines,
+                   "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
+        ->allow_extra_args(false)  // `-D a=1 SCENE`: SCENE is not a second define
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd.add_flag("--no-warnings", input.no_warnings, "print errors only");
+}
+
 void usage_hint() {
     std::cerr << "Run `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
 }
@@ -114,6 +122,7 @@ int run_cli(int argc, char** argv) {
         ->required();
     check->add_flag("--effects", check_args.effects,
                     "list the effects the scene uses and the objects that call for each");
+    add_scene_input(*check, check_args.input);
 
     AstArgs ast_args;
     CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
@@ -126,6 +135,7 @@ int run_cli(int argc, char** argv) {
     render->add_option("-o,--output", render_args.output,
                        "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
     render_refs.add(*render);
+    add_scene_input(*render, render_args.input);
     render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
         ->check(integer_in(0, 4096));
     render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
@@ -154,6 +164,7 @@ int run_cli(int argc, char** argv) {
     BenchArgs bench_args;
     CLI::App* bench = app.add_subcommand("bench", "measure error against time for each setting");
     bench->add_option("SCENE", bench_args.scene, "scene file")->required();
+    add_scene_input(*bench, bench_args.input);
     bench->add_option("-o,--output", bench_args.dir,
                       "directory for bench.csv, bench.md, bench.svg (default .)");
     bench

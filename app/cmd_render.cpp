@@ -160,7 +160,10 @@ int run_render(const RenderArgs& args) {
     if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
         return fail(exit_code::io, error);
 
+    lang::ParamTable params;
+    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
+    load_options.params = &params;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) {
@@ -175,7 +178,8 @@ int run_render(const RenderArgs& args) {
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
     try {
-        if (const int status = load_scene_file(args.scene, load_options, sources, loaded);
+        if (const int status =
+                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
             status != exit_code::ok)
             return status;
     } catch (const OversizedImage& size) {
@@ -183,6 +187,7 @@ int run_render(const RenderArgs& args) {
                                           std::to_string(size.height) + " exceeds 2^28 pixels");
     }
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    warn_unread_defines(params, args.input);
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lang/diagnostics.h"
+#include "lang/params.h"
 #include "render/renderer.h"
 #include "render/scene_spec.h"
 
@@ -26,6 +27,7 @@ struct LoadOptions {
     bool use_bvh = true;
     int threads = 0;
     std::function<void(render::SceneSpec&)> adjust;  // command-line overrides, before building
+    const ParamTable* params = nullptr;              // --define values that param() returns
 };
 
 struct LoadedScene {
