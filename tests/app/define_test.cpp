@@ -102,3 +102,18 @@ TEST_CASE("an unread --define is a warning; --no-warnings silences warnings", "[
     CHECK(r.err.find("error:") != std::string::npos);
     CHECK(r.err.find("warning:") == std::string::npos);
 }
+
+TEST_CASE("examples/soft-shadows.wsd takes its variant from --define", "[define]") {
+    TempDir dir;
+    const std::string scene = shell_quote(std::string(WSD_SOURCE_DIR) + "/examples/soft-shadows.wsd");
+    const std::string size = " -q --width 40 --height 30";
+    RunResult r = run_wsd(dir, "render " + scene + size + " -o default.pfm");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.empty());
+    r = run_wsd(dir, "render " + scene + size + " -o three.pfm -D variant=3");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.empty());  // the define was read
+    REQUIRE(run_wsd(dir, "render " + scene + size + " -o zero.pfm -D variant=0").status == 0);
+    CHECK(read_file(dir / "default.pfm") == read_file(dir / "three.pfm"));
+    CHECK(read_file(dir / "default.pfm") != read_file(dir / "zero.pfm"));
+}
