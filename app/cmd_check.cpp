@@ -52,7 +52,7 @@ int run_check(const CheckArgs& args) {
             std::cout << display_path(path) << ": ok \u2014 " << counted(s.objects, "object") << ", "
                       << counted(s.triangles, "triangle") << ", " << counted(s.lights, "light") << ", "
                       << counted(s.materials, "material") << "\n";
-            if (args.effects) print_effects(*scene, std::cout);
+            if (args.effects) print_effects(*scene, sources, std::cout);
         }
         std::cout << std::flush;
         if (rank(status) > rank(worst)) worst = status;

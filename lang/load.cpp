@@ -48,6 +48,10 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
 
     LoadedScene loaded;
     loaded.summary = lowered.summary;
+    loaded.shape_spans.reserve(lowered.spec.shapes.size());
+    for (const render::ShapeSpec& shape : lowered.spec.shapes)
+        loaded.shape_spans.push_back(shape.tag < lowered.spans.size() ? lowered.spans[shape.tag].span
+                                                                      : Span{});
     if (options.adjust) options.adjust(lowered.spec);
     loaded.parse_seconds = seconds_since(start);
 

@@ -34,7 +34,8 @@ struct LoadedScene {
     render::SceneSpec spec;
     std::shared_ptr<const render::Scene> scene;  // null unless options.build
     CheckSummary summary;
-    double parse_seconds = 0;  // read + lex + parse + evaluate + lower
+    std::vector<Span> shape_spans;  // where each of spec.shapes is written (its keyword or OBJ path)
+    double parse_seconds = 0;       // read + lex + parse + evaluate + lower
     double build_seconds = 0;
 };
 

@@ -138,8 +138,9 @@ TEST_CASE("check --effects names the effects and the objects that call for each"
     bool reflection = false, texture = false, soft = false;
     while (std::getline(lines, line)) {
         if (line.find("reflection") != std::string::npos)
-            reflection = line.find("sphere #2") != std::string::npos;
-        if (line.find("textures") != std::string::npos) texture = line.find("plane #1") != std::string::npos;
+            reflection = line.find("sphere at s.wsd:5:1") != std::string::npos;
+        if (line.find("textures") != std::string::npos)
+            texture = line.find("plane at s.wsd:4:1") != std::string::npos;
         if (line.find("area") != std::string::npos) soft = true;
     }
     CHECK(reflection);
