@@ -122,3 +122,35 @@ TEST_CASE("render says on stderr what it wrote, unless --quiet", "[render][feedb
     REQUIRE(r.status == 0);
     CHECK(r.err.empty());
 }
+
+TEST_CASE("a mesh file's zero-area triangles are skipped with one warning; written ones stay errors",
+          "[feedback][obj]") {
+    TempDir dir;
+    // A UV sphere's cap: quads whose last two corners are both the pole, and statements wsd skips.
+    write_file(dir / "cap.obj",
+               "mtllib cap.mtl\no cap\nv 1 0 0\nv 0 0 1\nv -1 0 0\nv 0 0 -1\nv 0 1 0\nusemtl white\ns 1\n"
+               "f 1 2 5 5\nf 2 3 5 5\nf 3 4 5 5\nf 4 1 5 5\n");
+    const std::string head =
+        "camera { position <0, 0.5, -4>  look_at <0, 0.5, 0> }\nlet m = material { color <1, 1, 1> }\n";
+    write_file(dir / "s.wsd", head + "mesh { file \"cap.obj\"  material m }\n");
+    RunResult r = run_wsd(dir, "check s.wsd");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("4 triangles") != std::string::npos);
+    CHECK(
+        r.err ==
+        "s.wsd:3:13: warning: cap.obj:1: ignored 4 statements that wsd does not use: 'mtllib' (line 1), 'o' "
+        "(line 2), 'usemtl' (line 8), 's' (line 9)\n"
+        "    3 | mesh { file \"cap.obj\"  material m }\n"
+        "      |             ^~~~~~~~~\n"
+        "s.wsd:3:13: warning: cap.obj:10: skipped 4 degenerate triangles (zero area), the first from this "
+        "line's face\n"
+        "    3 | mesh { file \"cap.obj\"  material m }\n"
+        "      |             ^~~~~~~~~\n");
+    CHECK(run_wsd(dir, "check s.wsd --no-warnings").err.empty());
+    write_file(dir / "inline.wsd", head +
+                                       "mesh { vertices [<1, 0, 0>, <0, 0, 1>, <0, 1, 0>]  faces [<0, 1, 2>, "
+                                       "<0, 2, 2>]  material m }\n");
+    r = run_wsd(dir, "check inline.wsd");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("face 1: degenerate triangle") != std::string::npos);
+}
