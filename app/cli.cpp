@@ -22,8 +22,9 @@ CLI::Validator integer_in(long long lo, long long hi) {
     return CLI::Validator(
         [lo, hi, range](std::string& text) -> std::string {
             long long value = 0;
+            const char* begin = text.data() + (text.size() > 1 && text[0] == '+' ? 1 : 0);
             const char* end = text.data() + text.size();
-            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            const auto [ptr, ec] = std::from_chars(begin, end, value);
             if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
                 return "'" + text + "' is not an integer";
             if (ec == std::errc::result_out_of_range || value < lo || value > hi)
