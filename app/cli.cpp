@@ -66,6 +66,28 @@ int unknown_command(CLI::App& app, const std::string& name) {
     return exit_code::usage;
 }
 
+int missing_command(CLI::App& app) {
+    std::cerr << "wsd: error: a command is required:";
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        std::cerr << ' ' << sub->get_name();
+    std::cerr << '\n';
+    usage_hint();
+    return exit_code::usage;
+}
+
+// `wsd help [COMMAND]`: the help of wsd, or of one command as `wsd COMMAND --help` prints it.
+int print_help(CLI::App& app, const std::string& topic) {
+    if (topic.empty()) {
+        // app.help() would describe the selected subcommand, `help` itself.
+        std::cout << app.get_formatter()->make_help(&app, "wsd", CLI::AppFormatMode::Normal) << std::flush;
+        return exit_code::ok;
+    }
+    CLI::App* command = find_command(app, topic);
+    if (!command) return unknown_command(app, topic);
+    std::cout << command->help("wsd") << std::flush;
+    return exit_code::ok;
+}
+
 struct RenderOptionRefs {
     int width = 0, height = 0, supersamples = 0, light_samples = 0, max_depth = 0;
     long long seed = 0;
@@ -198,15 +220,8 @@ int run_cli(int argc, char** argv) {
     help->add_option("COMMAND", help_topic, "the command to explain");
 
     // CLI11 reports both a missing and an unknown first word as "A subcommand is required".
-    if (argc < 2) {
-        std::cerr << "wsd: error: a command is required:";
-        for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
-            std::cerr << ' ' << sub->get_name();
-        std::cerr << '\n';
-        usage_hint();
-        return exit_code::usage;
-    }
-    if (argc >= 2 && argv[1][0] != '-' && !find_command(app, argv[1])) return unknown_command(app, argv[1]);
+    if (argc < 2) return missing_command(app);
+    if (argv[1][0] != '-' && !find_command(app, argv[1])) return unknown_command(app, argv[1]);
 
     try {
         app.parse(argc, argv);
@@ -220,19 +235,7 @@ int run_cli(int argc, char** argv) {
         return exit_code::usage;
     }
 
-    if (*help) {
-        if (help_topic.empty()) {
-            // app.help() would describe the selected subcommand, `help` itself.
-            std::cout << app.get_formatter()->make_help(&app, "wsd", CLI::AppFormatMode::Normal)
-                      << std::flush;
-            return exit_code::ok;
-        }
-        CLI::App* topic = find_command(app, help_topic);
-        if (!topic) return unknown_command(app, help_topic);
-        std::cout << topic->help("wsd") << std::flush;
-        return exit_code::ok;
-    }
-
+    if (*help) return print_help(app, help_topic);
     if (*check) return run_check(check_args);
     if (*ast) return run_ast(ast_args);
     if (*render) {

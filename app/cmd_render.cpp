@@ -138,6 +138,64 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
     return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
 }
 
+// Loads the scene with the command line's defines and overrides: an exit status.
+int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& loaded) {
+    lang::ParamTable params;
+    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
+    lang::LoadOptions load_options;
+    load_options.params = &params;
+    load_options.use_bvh = !args.no_bvh;
+    load_options.threads = args.threads;
+    load_options.adjust = [&](render::SceneSpec& spec) {
+        args.overrides.apply(spec);
+        // A size that only the command line makes too large is a usage error, not the scene's;
+        // it stops the load before anything is built.
+        const render::Settings& s = spec.settings;
+        if ((args.overrides.width || args.overrides.height) &&
+            static_cast<long long>(s.width) * s.height > max_image_pixels)
+            throw OversizedImage{s.width, s.height};
+    };
+    try {
+        if (const int status =
+                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
+            status != exit_code::ok)
+            return status;
+    } catch (const OversizedImage& size) {
+        return fail(exit_code::usage, "image size " + std::to_string(size.width) + "x" +
+                                          std::to_string(size.height) + " exceeds 2^28 pixels");
+    }
+    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    warn_unread_defines(params, args.input);
+    return exit_code::ok;
+}
+
+// --stats (a table on stdout) and --stats-json FILE: an exit status.
+int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
+                 const render::RenderResult& result) {
+    const render::Settings& settings = loaded.spec.settings;
+    std::string error;
+    RenderReport report;
+    report.scene = display_path(args.scene);
+    report.width = settings.width;
+    report.height = settings.height;
+    report.region_width = result.film.width;
+    report.region_height = result.film.height;
+    report.supersamples = settings.supersamples;
+    report.threads = args.threads;
+    report.stats = result.stats;
+    report.parse_seconds = loaded.parse_seconds;
+    // The loader times the whole build_scene call; the scene's own build time is part of it.
+    report.build_seconds = loaded.build_seconds;
+    report.render_seconds = result.render_seconds;
+    report.peak_memory_bytes = peak_memory_bytes();
+    report.effects = result.effects;
+    if (args.stats) std::cout << stats_table(report) << std::flush;
+    if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
+        return fail(exit_code::io, error);
+    return exit_code::ok;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
@@ -160,34 +218,9 @@ int run_render(const RenderArgs& args) {
     if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
         return fail(exit_code::io, error);
 
-    lang::ParamTable params;
-    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
-    lang::LoadOptions load_options;
-    load_options.params = &params;
-    load_options.use_bvh = !args.no_bvh;
-    load_options.threads = args.threads;
-    load_options.adjust = [&](render::SceneSpec& spec) {
-        args.overrides.apply(spec);
-        // A size that only the command line makes too large is a usage error, not the scene's;
-        // it stops the load before anything is built.
-        const render::Settings& s = spec.settings;
-        if ((args.overrides.width || args.overrides.height) &&
-            static_cast<long long>(s.width) * s.height > max_image_pixels)
-            throw OversizedImage{s.width, s.height};
-    };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    try {
-        if (const int status =
-                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
-            status != exit_code::ok)
-            return status;
-    } catch (const OversizedImage& size) {
-        return fail(exit_code::usage, "image size " + std::to_string(size.width) + "x" +
-                                          std::to_string(size.height) + " exceeds 2^28 pixels");
-    }
-    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
-    warn_unread_defines(params, args.input);
+    if (const int status = load_for_render(args, sources, loaded); status != exit_code::ok) return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
@@ -233,26 +266,7 @@ int run_render(const RenderArgs& args) {
                   << '\n'
                   << std::flush;
 
-    if (args.stats || !args.stats_json.empty()) {
-        RenderReport report;
-        report.scene = display_path(args.scene);
-        report.width = settings.width;
-        report.height = settings.height;
-        report.region_width = result.film.width;
-        report.region_height = result.film.height;
-        report.supersamples = settings.supersamples;
-        report.threads = args.threads;
-        report.stats = result.stats;
-        report.parse_seconds = loaded->parse_seconds;
-        // The loader times the whole build_scene call; the scene's own build time is part of it.
-        report.build_seconds = loaded->build_seconds;
-        report.render_seconds = result.render_seconds;
-        report.peak_memory_bytes = peak_memory_bytes();
-        report.effects = result.effects;
-        if (args.stats) std::cout << stats_table(report) << std::flush;
-        if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
-            return fail(exit_code::io, error);
-    }
+    if (args.stats || !args.stats_json.empty()) return report_stats(args, *loaded, result);
     return exit_code::ok;
 }
 
