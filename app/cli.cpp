@@ -1,16 +1,92 @@
 // The command line: one CLI11 subcommand per command, value checks that make bad values usage
 // errors (status 2), and the mapping of CLI11's own errors onto wsd's exit statuses.
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <stdexcept>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "lang/diagnostics.h"
 
 namespace wsd::app {
 
 namespace {
+
+// A whole decimal integer between lo and hi. CLI11's Range would call "abc" out of range; a
+// value that is not an integer at all deserves its own message.
+CLI::Validator integer_in(long long lo, long long hi) {
+    const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
+    return CLI::Validator(
+        [lo, hi, range](std::string& text) -> std::string {
+            long long value = 0;
+            const char* begin = text.data() + (text.size() > 1 && text[0] == '+' ? 1 : 0);
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(begin, end, value);
+            if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
+                return "'" + text + "' is not an integer";
+            if (ec == std::errc::result_out_of_range || value < lo || value > hi)
+                return text + " is not in the range " + range;
+            return "";
+        },
+        "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
+}
+
+void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
+    cmd.add_option("-D,--define", input.defines,
+                   "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
+        ->allow_extra_args(false)  // `-D a=1 SCENE`: SCENE is not a second define
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    cmd.add_flag("--no-warnings", input.no_warnings, "print errors only");
+}
+
+void usage_hint() {
+    std::cerr << "Run `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
+}
+
+// The subcommand named `name`, or null.
+CLI::App* find_command(CLI::App& app, const std::string& name) {
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        if (sub->get_name() == name) return sub;
+    return nullptr;
+}
+
+// "unknown command 'rendr'; did you mean 'render'?" as a usage error.
+int unknown_command(CLI::App& app, const std::string& name) {
+    std::vector<std::string> names;
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        names.push_back(sub->get_name());
+    const std::string match = lang::closest_match(name, names);
+    std::cerr << "wsd: error: unknown command '" << name << "'";
+    if (!match.empty()) std::cerr << "; did you mean '" << match << "'?";
+    std::cerr << '\n';
+    usage_hint();
+    return exit_code::usage;
+}
+
+int missing_command(CLI::App& app) {
+    std::cerr << "wsd: error: a command is required:";
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        std::cerr << ' ' << sub->get_name();
+    std::cerr << '\n';
+    usage_hint();
+    return exit_code::usage;
+}
+
+// `wsd help [COMMAND]`: the help of wsd, or of one command as `wsd COMMAND --help` prints it.
+int print_help(CLI::App& app, const std::string& topic) {
+    if (topic.empty()) {
+        // app.help() would describe the selected subcommand, `help` itself.
+        std::cout << app.get_formatter()->make_help(&app, "wsd", CLI::AppFormatMode::Normal) << std::flush;
+        return exit_code::ok;
+    }
+    CLI::App* command = find_command(app, topic);
+    if (!command) return unknown_command(app, topic);
+    std::cout << command->help("wsd") << std::flush;
+    return exit_code::ok;
+}
 
 struct RenderOptionRefs {
     int width = 0, height = 0, supersamples = 0, light_samples = 0, max_depth = 0;
@@ -21,18 +97,18 @@ struct RenderOptionRefs {
 
     void add(CLI::App& cmd) {
         o_width = cmd.add_option("--width", width, "image width in pixels (replaces the scene's)")
-                      ->check(CLI::Range(1, max_image_side));
+                      ->check(integer_in(1, max_image_side));
         o_height = cmd.add_option("--height", height, "image height in pixels")
-                       ->check(CLI::Range(1, max_image_side));
+                       ->check(integer_in(1, max_image_side));
         o_supersamples = cmd.add_option("--supersamples", supersamples, "rays per pixel")
-                             ->check(CLI::Range(1, max_supersamples));
+                             ->check(integer_in(1, max_supersamples));
         o_light_samples =
             cmd.add_option("--light-samples", light_samples, "every area light becomes an N×N grid")
-                ->check(CLI::Range(1, max_light_grid_side));
+                ->check(integer_in(1, max_light_grid_side));
         o_max_depth = cmd.add_option("--max-depth", max_depth, "reflection/refraction depth limit")
-                          ->check(CLI::Range(0, max_depth_limit));
+                          ->check(integer_in(0, max_depth_limit));
         o_seed = cmd.add_option("--seed", seed, "random seed (0 … 4294967295)")
-                     ->check(CLI::Range(0LL, 4294967295LL));
+                     ->check(integer_in(0LL, 4294967295LL));
         cmd.add_flag("--adaptive-aa", adaptive_aa, "adaptive supersampling (full grid only at edges)");
     }
 
@@ -69,6 +145,7 @@ int run_cli(int argc, char** argv) {
         ->required();
     check->add_flag("--effects", check_args.effects,
                     "list the effects the scene uses and the objects that call for each");
+    add_scene_input(*check, check_args.input);
 
     AstArgs ast_args;
     CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
@@ -81,8 +158,9 @@ int run_cli(int argc, char** argv) {
     render->add_option("-o,--output", render_args.output,
                        "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
     render_refs.add(*render);
+    add_scene_input(*render, render_args.input);
     render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
-        ->check(CLI::Range(0, 4096));
+        ->check(integer_in(0, 4096));
     render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
     render->add_flag(
         "--general", render_args.general,
@@ -109,32 +187,41 @@ int run_cli(int argc, char** argv) {
     BenchArgs bench_args;
     CLI::App* bench = app.add_subcommand("bench", "measure error against time for each setting");
     bench->add_option("SCENE", bench_args.scene, "scene file")->required();
+    add_scene_input(*bench, bench_args.input);
     bench->add_option("-o,--output", bench_args.dir,
                       "directory for bench.csv, bench.md, bench.svg (default .)");
     bench
         ->add_option("--repeat", bench_args.repeat,
                      "runs per setting; the median is reported (default 3, or 1 with --quick)")
-        ->check(CLI::Range(1, 1000));
+        ->check(integer_in(1, 1000));
     bench->add_flag("--quick", bench_args.quick,
                     "a small sweep at a small size (at most 32 pixels a side; for tests)");
     bench
         ->add_option("--reference-supersamples", bench_args.reference_supersamples,
                      "supersamples of the reference image (default 256; the reference uses another seed)")
-        ->check(CLI::Range(1, max_supersamples));
+        ->check(integer_in(1, max_supersamples));
     bench
         ->add_option("--reference-light-samples", bench_args.reference_light_samples,
                      "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
-        ->check(CLI::Range(1, max_light_grid_side));
+        ->check(integer_in(1, max_light_grid_side));
     bench
         ->add_option("--reference-depth", bench_args.reference_depth,
                      "max depth of the reference (default max(scene, 10))")
-        ->check(CLI::Range(0, max_depth_limit));
+        ->check(integer_in(0, max_depth_limit));
     bench->add_option("--threads", bench_args.threads, "render threads; 0 = all cores")
-        ->check(CLI::Range(0, 4096));
+        ->check(integer_in(0, 4096));
     bench->add_option("--width", bench_args.width, "image width (default the scene's)")
-        ->check(CLI::Range(1, max_image_side));
-    bench->add_option("--height", bench_args.height, "image height")->check(CLI::Range(1, max_image_side));
+        ->check(integer_in(1, max_image_side));
+    bench->add_option("--height", bench_args.height, "image height")->check(integer_in(1, max_image_side));
     bench->add_flag("-q,--quiet", bench_args.quiet, "no progress output");
+
+    std::string help_topic;
+    CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
+    help->add_option("COMMAND", help_topic, "the command to explain");
+
+    // CLI11 reports both a missing and an unknown first word as "A subcommand is required".
+    if (argc < 2) return missing_command(app);
+    if (argv[1][0] != '-' && !find_command(app, argv[1])) return unknown_command(app, argv[1]);
 
     try {
         app.parse(argc, argv);
@@ -143,11 +230,12 @@ int run_cli(int argc, char** argv) {
             app.exit(e);  // --help, --version
             return exit_code::ok;
         }
-        std::cerr << "wsd: error: " << e.what()
-                  << "\nRun `wsd --help` (or `wsd COMMAND --help`) for usage.\n";
+        std::cerr << "wsd: error: " << e.what() << '\n';
+        usage_hint();
         return exit_code::usage;
     }
 
+    if (*help) return print_help(app, help_topic);
     if (*check) return run_check(check_args);
     if (*ast) return run_ast(ast_args);
     if (*render) {

@@ -55,15 +55,17 @@ struct RunResult {
     double wall = 0, cpu = 0;
 };
 
+// The scene's diagnostics were shown by the first load (run_bench); these loads print errors only.
 int run_setting(const std::string& path, const std::string& text, const SceneOverrides& overrides,
-                const BenchArgs& args, int repeat, const CancelOnSignal& signals, const std::string& label,
-                RunResult& out) {
+                const BenchArgs& args, const lang::ParamTable& params, int repeat,
+                const CancelOnSignal& signals, const std::string& label, RunResult& out) {
     lang::LoadOptions load_options;
+    load_options.params = &params;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) { overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int s = load_scene_text(path, text, load_options, sources, loaded); s != exit_code::ok)
+    if (const int s = load_scene_text(path, text, load_options, sources, loaded, false); s != exit_code::ok)
         return s;
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
     std::vector<double> walls, cpus;
@@ -153,15 +155,22 @@ int run_bench(const BenchArgs& args) {
     std::string text, error;
     if (!read_input_file(args.scene, text, error)) return fail(exit_code::io, error);
 
+    lang::ParamTable params;
+    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
+
     // The scene's own settings, without building anything.
     SceneFacts facts;
     {
         lang::LoadOptions options;
         options.build = false;
+        options.params = &params;
         lang::SourceManager sources;
         std::optional<lang::LoadedScene> loaded;
-        if (const int s = load_scene_text(args.scene, text, options, sources, loaded); s != exit_code::ok)
+        if (const int s =
+                load_scene_text(args.scene, text, options, sources, loaded, !args.input.no_warnings);
+            s != exit_code::ok)
             return s;
+        warn_unread_defines(params, args.input);
         const render::Settings& st = loaded->spec.settings;
         facts.width = st.width;
         facts.height = st.height;
@@ -225,7 +234,8 @@ int run_bench(const BenchArgs& args) {
         std::cerr << "bench: reference (" << info.reference_settings << ") at " << width << "x" << height
                   << "\n";
     RunResult ref;
-    if (const int s = run_setting(args.scene, text, reference, args, 1, signals, "bench reference", ref);
+    if (const int s =
+            run_setting(args.scene, text, reference, args, params, 1, signals, "bench reference", ref);
         s != exit_code::ok) {
         if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
         return s;
@@ -240,7 +250,8 @@ int run_bench(const BenchArgs& args) {
         RunResult run;
         const std::string label = "bench [" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) +
                                   "] " + setting.knob + " " + setting.value;
-        if (const int s = run_setting(args.scene, text, setting.overrides, args, repeat, signals, label, run);
+        if (const int s =
+                run_setting(args.scene, text, setting.overrides, args, params, repeat, signals, label, run);
             s != exit_code::ok) {
             if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
             return s;

@@ -36,17 +36,23 @@ int rank(int status) {
 int run_check(const CheckArgs& args) {
     int worst = exit_code::ok;
     for (const std::string& path : args.files) {
+        // Each file reads the defines afresh: one that a file does not use is a warning for it.
+        lang::ParamTable params;
+        if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
         lang::LoadOptions options;
         options.fragment = is_fragment(path);
         options.build = !options.fragment;
+        options.params = &params;
         lang::SourceManager sources;
         std::optional<lang::LoadedScene> scene;
-        const int status = load_scene_file(path, options, sources, scene);
+        const int status = load_scene_file(path, options, sources, scene, !args.input.no_warnings);
         if (status == exit_code::ok) {
+            warn_unread_defines(params, args.input);
             const lang::CheckSummary& s = scene->summary;
-            std::cout << display_path(path) << ": ok \u2014 " << s.objects << " objects, " << s.triangles
-                      << " triangles, " << s.lights << " lights, " << s.materials << " materials\n";
-            if (args.effects) print_effects(*scene, std::cout);
+            std::cout << display_path(path) << ": ok \u2014 " << counted(s.objects, "object") << ", "
+                      << counted(s.triangles, "triangle") << ", " << counted(s.lights, "light") << ", "
+                      << counted(s.materials, "material") << "\n";
+            if (args.effects) print_effects(*scene, sources, std::cout);
         }
         std::cout << std::flush;
         if (rank(status) > rank(worst)) worst = status;

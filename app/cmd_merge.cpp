@@ -93,17 +93,23 @@ int check_coverage(const std::vector<Tile>& tiles) {
             if (!covered) gap = describe(cell);
         }
     std::string missing;
+    int missing_count = 0;
     const int count = tiles.front().meta.tile_count;
     if (count > 0) {
         std::set<int> present;
         for (const Tile& t : tiles) present.insert(t.meta.tile_index);
         for (int i = 1; i <= count; ++i)
-            if (!present.count(i))
+            if (!present.count(i)) {
                 missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(count);
+                ++missing_count;
+            }
     }
-    return fail(exit_code::input_error,
-                "the tiles do not cover the image: pixels " + gap + " are missing" +
-                    (missing.empty() ? std::string() : " (missing tile " + missing + ")"));
+    return fail(
+        exit_code::input_error,
+        "the tiles do not cover the image: pixels " + gap + " are missing" +
+            (missing.empty()
+                 ? std::string()
+                 : std::string(missing_count == 1 ? " (missing tile " : " (missing tiles ") + missing + ")"));
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // whole image or one tile/region with progress and cancellation, and writes the image (or tile
 // file) atomically, then the statistics. Usage errors are found before any rendering starts.
 #include <charconv>
+#include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 
@@ -24,6 +26,11 @@ bool parse_whole_int(std::string_view text, long long& value) {
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     return ec == std::errc() && end == text.data() + text.size();
 }
+
+// Thrown out of the load when --width/--height make the image larger than 2^28 pixels.
+struct OversizedImage {
+    int width = 0, height = 0;
+};
 
 struct TileRequest {
     int index = 0, count = 0;              // --tile I/N
@@ -90,7 +97,8 @@ bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& e
         const int y1 = static_cast<int>(tile.index * h / tile.count);
         if (y0 == y1) {
             error = "--tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) +
-                    ": the image has only " + std::to_string(s.height) + " rows, so this tile is empty";
+                    ": the image has only " + counted(static_cast<uint64_t>(s.height), "row") +
+                    ", so this tile is empty";
             return false;
         }
         tile.region = render::Region{0, y0, s.width, y1};
@@ -105,9 +113,93 @@ bool resolve_region(TileRequest& tile, const render::Settings& s, std::string& e
     return true;
 }
 
+// "7.3 s" under a minute, "2:05" (as progress shows durations) from a minute on.
+std::string short_duration(double seconds) {
+    if (seconds >= 60) return format_duration(seconds);
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f s", seconds);
+    return buf;
+}
+
+// The line that tells where the image went: "wrote NAME (W×H, T)", and for a tile or region
+// which part of which image.
+std::string wrote_line(const std::string& output, const TileRequest& tile, const render::Settings& s,
+                       double seconds) {
+    const std::string size = std::to_string(s.width) + "\u00d7" + std::to_string(s.height);
+    std::string what = size;
+    if (tile.count > 0) {
+        what = "tile " + std::to_string(tile.index) + "/" + std::to_string(tile.count) + ": rows " +
+               std::to_string(tile.region->y0) + " to " + std::to_string(tile.region->y1 - 1) + " of " + size;
+    } else if (tile.region) {
+        const render::Region& r = *tile.region;
+        what = "region " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) +
+               "," + std::to_string(r.y1) + " of " + size;
+    }
+    return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
+}
+
+// Loads the scene with the command line's defines and overrides: an exit status.
+int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& loaded) {
+    lang::ParamTable params;
+    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
+    lang::LoadOptions load_options;
+    load_options.params = &params;
+    load_options.use_bvh = !args.no_bvh;
+    load_options.threads = args.threads;
+    load_options.adjust = [&](render::SceneSpec& spec) {
+        args.overrides.apply(spec);
+        // A size that only the command line makes too large is a usage error, not the scene's;
+        // it stops the load before anything is built.
+        const render::Settings& s = spec.settings;
+        if ((args.overrides.width || args.overrides.height) &&
+            static_cast<long long>(s.width) * s.height > max_image_pixels)
+            throw OversizedImage{s.width, s.height};
+    };
+    try {
+        if (const int status =
+                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
+            status != exit_code::ok)
+            return status;
+    } catch (const OversizedImage& size) {
+        return fail(exit_code::usage, "image size " + std::to_string(size.width) + "x" +
+                                          std::to_string(size.height) + " exceeds 2^28 pixels");
+    }
+    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    warn_unread_defines(params, args.input);
+    return exit_code::ok;
+}
+
+// --stats (a table on stdout) and --stats-json FILE: an exit status.
+int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
+                 const render::RenderResult& result) {
+    const render::Settings& settings = loaded.spec.settings;
+    std::string error;
+    RenderReport report;
+    report.scene = display_path(args.scene);
+    report.width = settings.width;
+    report.height = settings.height;
+    report.region_width = result.film.width;
+    report.region_height = result.film.height;
+    report.supersamples = settings.supersamples;
+    report.threads = args.threads;
+    report.stats = result.stats;
+    report.parse_seconds = loaded.parse_seconds;
+    // The loader times the whole build_scene call; the scene's own build time is part of it.
+    report.build_seconds = loaded.build_seconds;
+    report.render_seconds = result.render_seconds;
+    report.peak_memory_bytes = peak_memory_bytes();
+    report.effects = result.effects;
+    if (args.stats) std::cout << stats_table(report) << std::flush;
+    if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
+        return fail(exit_code::io, error);
+    return exit_code::ok;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
     TileRequest tile;
     std::string error;
     if (!args.tile.empty() && !args.region.empty())
@@ -126,20 +218,10 @@ int run_render(const RenderArgs& args) {
     if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
         return fail(exit_code::io, error);
 
-    lang::LoadOptions load_options;
-    load_options.use_bvh = !args.no_bvh;
-    load_options.threads = args.threads;
-    load_options.adjust = [&](render::SceneSpec& spec) { args.overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_scene_file(args.scene, load_options, sources, loaded);
-        status != exit_code::ok)
-        return status;
-    if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    if (const int status = load_for_render(args, sources, loaded); status != exit_code::ok) return status;
     const render::Settings& settings = loaded->spec.settings;
-    if (static_cast<long long>(settings.width) * settings.height > max_image_pixels)
-        return fail(exit_code::usage, "image size " + std::to_string(settings.width) + "x" +
-                                          std::to_string(settings.height) + " exceeds 2^28 pixels");
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
     CancelOnSignal signals;
@@ -177,26 +259,14 @@ int run_render(const RenderArgs& args) {
     } else if (!render::write_image(output, result.film, error)) {
         return fail(exit_code::io, error);
     }
+    if (!args.quiet)
+        std::cerr << wrote_line(
+                         output, tile, settings,
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+                  << '\n'
+                  << std::flush;
 
-    if (args.stats || !args.stats_json.empty()) {
-        RenderReport report;
-        report.scene = display_path(args.scene);
-        report.width = settings.width;
-        report.height = settings.height;
-        report.region_width = result.film.width;
-        report.region_height = result.film.height;
-        report.supersamples = settings.supersamples;
-        report.threads = args.threads;
-        report.stats = result.stats;
-        report.parse_seconds = loaded->parse_seconds;
-        report.build_seconds = loaded->build_seconds + result.build_seconds;
-        report.render_seconds = result.render_seconds;
-        report.peak_memory_bytes = peak_memory_bytes();
-        report.effects = result.effects;
-        if (args.stats) std::cout << stats_table(report) << std::flush;
-        if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
-            return fail(exit_code::io, error);
-    }
+    if (args.stats || !args.stats_json.empty()) return report_stats(args, *loaded, result);
     return exit_code::ok;
 }
 

@@ -15,6 +15,7 @@ int run_cli(int argc, char** argv);
 struct CheckArgs {
     std::vector<std::string> files;
     bool effects = false;
+    SceneInputArgs input;
 };
 int run_check(const CheckArgs& args);
 
@@ -25,6 +26,7 @@ int run_ast(const AstArgs& args);
 
 struct RenderArgs {
     std::string scene;
+    SceneInputArgs input;
     std::string output;  // empty: ./NAME.png (./NAME.tile-I-of-N.pfm for tiles)
     SceneOverrides overrides;
     int threads = 0;
@@ -53,6 +55,7 @@ int run_merge(const MergeArgs& args);
 
 struct BenchArgs {
     std::string scene;
+    SceneInputArgs input;
     std::string dir = ".";
     int repeat = 0;  // 0: 3, or 1 with --quick
     bool quick = false;

@@ -1,6 +1,6 @@
 // `wsd check --effects`: the renderer's own effect analysis (render::analyse_effects) printed as
-// one line per effect, with the objects that call for it named by their position in the scene
-// (the n-th object statement evaluated) and kind.
+// one line per effect, with the objects that call for it named by kind and by where they are
+// written (file:line:col of the keyword, or of an OBJ mesh's file name).
 #include "app/effects_report.h"
 
 #include "render/effects.h"
@@ -27,9 +27,21 @@ const char* kind_name(render::ShapeKind kind) {
     return "object";
 }
 
+// "sphere at s.wsd:5:1"; an object in a loop is named at its one statement.
+std::string object_name(const lang::LoadedScene& scene, const lang::SourceManager& sources, uint32_t index) {
+    const render::SceneSpec& spec = scene.spec;
+    std::string name = index < spec.shapes.size() ? kind_name(spec.shapes[index].kind) : "object";
+    if (index >= scene.shape_spans.size()) return name + " #" + std::to_string(index + 1);
+    const lang::Span span = scene.shape_spans[index];
+    if (span.file >= sources.size()) return name + " #" + std::to_string(index + 1);
+    const lang::LineCol at = sources.line_col(span.file, span.begin);
+    return name + " at " + sources.file(span.file).path + ":" + std::to_string(at.line) + ":" +
+           std::to_string(at.column);
+}
+
 }  // namespace
 
-void print_effects(const lang::LoadedScene& scene, std::ostream& out) {
+void print_effects(const lang::LoadedScene& scene, const lang::SourceManager& sources, std::ostream& out) {
     const render::SceneSpec& spec = scene.spec;
     const render::EffectSet effects = render::analyse_effects(spec);
     if (effects.mask == 0) {
@@ -48,9 +60,7 @@ void print_effects(const lang::LoadedScene& scene, std::ostream& out) {
         }
         out << ": ";
         for (size_t k = 0; k < shapes.size() && k < max_listed; ++k) {
-            const uint32_t index = shapes[k];
-            const char* kind = index < spec.shapes.size() ? kind_name(spec.shapes[index].kind) : "object";
-            out << (k ? ", " : "") << kind << " #" << index + 1;
+            out << (k ? ", " : "") << object_name(scene, sources, shapes[k]);
         }
         if (shapes.size() > max_listed) out << " and " << shapes.size() - max_listed << " more";
         out << '\n';

@@ -8,6 +8,6 @@
 
 namespace wsd::app {
 
-void print_effects(const lang::LoadedScene& scene, std::ostream& out);
+void print_effects(const lang::LoadedScene& scene, const lang::SourceManager& sources, std::ostream& out);
 
 }  // namespace wsd::app

@@ -120,6 +120,12 @@ void warn(const std::string& message) {
     std::cerr << "wsd: warning: " << message << '\n';
 }
 
+std::string counted(uint64_t count, std::string_view singular, std::string_view plural) {
+    std::string out = std::to_string(count) + " ";
+    if (count == 1) return out.append(singular);
+    return plural.empty() ? out.append(singular).append("s") : out.append(plural);
+}
+
 uint64_t fnv1a64(std::string_view data, uint64_t seed) {
     uint64_t h = seed;
     for (const char c : data) {

@@ -36,6 +36,10 @@ std::string json_escape(const std::string& s);
 // The stem of a scene path for default outputs ("a/b/NAME.wsd" → "NAME"; "-" → "stdin").
 std::string scene_stem(const std::string& path);
 
+// "1 light", "3 lights": a count with its noun, plural unless the count is one. `plural` defaults
+// to `singular` + "s".
+std::string counted(uint64_t count, std::string_view singular, std::string_view plural = {});
+
 // Process memory high-water mark (VmHWM) in bytes, 0 if unknown.
 uint64_t peak_memory_bytes();
 

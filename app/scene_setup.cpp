@@ -30,10 +30,43 @@ std::string display_path(const std::string& path) {
     return path == "-" ? "<stdin>" : path;
 }
 
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params) {
+    for (const std::string& define : defines) {
+        const size_t eq = define.find('=');
+        if (eq == std::string::npos || eq == 0)
+            return fail(exit_code::usage, "--define '" + define + "': expected NAME=EXPR");
+        const std::string name = define.substr(0, eq);
+        std::string error;
+        std::optional<lang::Value> value = lang::evaluate_define(define.substr(eq + 1), error);
+        if (!value) return fail(exit_code::usage, "--define " + name + ": " + error);
+        params.set(name, std::move(*value));
+    }
+    return exit_code::ok;
+}
+
+void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input) {
+    if (input.no_warnings) return;
+    for (const std::string& name : params.unread())
+        warn("--define " + name + " was not used: no param(\"" + name + "\", ...) call read it");
+}
+
+namespace {
+
+// The errors of `diags` alone, for --no-warnings (their notes and help stay with them).
+lang::Diagnostics errors_only(const lang::Diagnostics& diags) {
+    lang::Diagnostics errors;
+    for (const lang::Diagnostic& d : diags.all())
+        if (d.severity == lang::Severity::Error) errors.error(d.span, d.message) = d;
+    return errors;
+}
+
+}  // namespace
+
 int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene) {
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene, bool warnings) {
     lang::Diagnostics diags;
     scene = lang::load_scene(display_path(path), text, sources, diags, options);
+    if (!warnings) diags = errors_only(diags);
     if (!diags.all().empty()) std::cerr << lang::format_diagnostics(diags, sources);
     if (diags.has_errors()) {
         scene.reset();
@@ -44,10 +77,10 @@ int load_scene_text(const std::string& path, const std::string& text, const lang
 }
 
 int load_scene_file(const std::string& path, const lang::LoadOptions& options, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& scene) {
+                    std::optional<lang::LoadedScene>& scene, bool warnings) {
     std::string text, error;
     if (!read_input_file(path, text, error)) return fail(exit_code::io, error);
-    return load_scene_text(path, text, options, sources, scene);
+    return load_scene_text(path, text, options, sources, scene, warnings);
 }
 
 uint64_t scene_text_hash(const lang::SourceManager& sources) {

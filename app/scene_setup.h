@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lang/load.h"
 #include "render/scene_spec.h"
@@ -30,17 +31,32 @@ constexpr int max_supersamples = 4096;
 constexpr int max_depth_limit = 256;
 constexpr int max_light_grid_side = 256;  // N×N ≤ 65,536
 
+// What every command that loads scenes (check, render, bench) takes from the command line.
+struct SceneInputArgs {
+    std::vector<std::string> defines;  // NAME=EXPR, from --define/-D, in order
+    bool no_warnings = false;
+};
+
+// The values of the --define options, evaluated once per command (lang::evaluate_define).
+// Returns an exit status: 0, or 2 (usage) with a message naming the bad define.
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params);
+
+// After a successful load: a warning for each --define that no param() call read.
+void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input);
+
 // The name used in messages for a scene read from stdin ("-").
 std::string display_path(const std::string& path);
 
-// Reads `path` ("-" = stdin) and loads it. Diagnostics go to stderr. Returns an exit status:
-// 0 with `scene` set, 1 for scene errors, 3 when the file cannot be read.
+// Reads `path` ("-" = stdin) and loads it. Diagnostics go to stderr (errors only unless
+// `warnings`). Returns an exit status: 0 with `scene` set, 1 for scene errors, 3 when the file
+// cannot be read.
 int load_scene_file(const std::string& path, const lang::LoadOptions& options, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& scene);
+                    std::optional<lang::LoadedScene>& scene, bool warnings = true);
 
 // Same, from text already read (bench loads one text many times).
 int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene);
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene,
+                    bool warnings = true);
 
 // FNV-1a 64 of every source file the load read (the scene and its includes), in order.
 uint64_t scene_text_hash(const lang::SourceManager& sources);

@@ -97,7 +97,9 @@ std::string stats_table(const RenderReport& r) {
     line(out, "Build time:", fixed(r.build_seconds, 3) + " s");
     line(out, "Render time:",
          fixed(r.render_seconds, 3) + " s  (" +
-             (r.threads > 0 ? std::to_string(r.threads) : std::string("all")) + " threads)");
+             (r.threads > 0 ? counted(static_cast<uint64_t>(r.threads), "thread")
+                            : std::string("all threads")) +
+             ")");
     line(out, "Speed:", fixed(mrays_per_second(r), 3) + " Mrays/s");
     line(out,
          "Peak memory:", fixed(static_cast<double>(r.peak_memory_bytes) / (1024.0 * 1024.0), 1) + " MiB");

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "lang/params.h"
+
 namespace wsd::lang {
 
 double srgb_to_linear(double c) {
@@ -295,6 +297,7 @@ const std::vector<Builtin>& builtin_functions() {
         {"len", 1, fn_len},
         {"rgb", 3, fn_rgb},
         {"srgb", 3, fn_srgb},
+        {"param", 2, builtin_param},
     };
     return table;
 }

@@ -34,6 +34,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         if (diags.error_count() > errors_before) return std::nullopt;
         SceneBuilder builder(file);
         {
+            const ParamScope params(options.params);
             Interpreter interpreter(sources, diags, builder);
             interpreter.run(program);
             camera_seen = interpreter.camera_seen();
@@ -47,6 +48,10 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
 
     LoadedScene loaded;
     loaded.summary = lowered.summary;
+    loaded.shape_spans.reserve(lowered.spec.shapes.size());
+    for (const render::ShapeSpec& shape : lowered.spec.shapes)
+        loaded.shape_spans.push_back(shape.tag < lowered.spans.size() ? lowered.spans[shape.tag].span
+                                                                      : Span{});
     if (options.adjust) options.adjust(lowered.spec);
     loaded.parse_seconds = seconds_since(start);
 

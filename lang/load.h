@@ -8,6 +8,7 @@
 #include <string>
 
 #include "lang/diagnostics.h"
+#include "lang/params.h"
 #include "render/renderer.h"
 #include "render/scene_spec.h"
 
@@ -26,13 +27,15 @@ struct LoadOptions {
     bool use_bvh = true;
     int threads = 0;
     std::function<void(render::SceneSpec&)> adjust;  // command-line overrides, before building
+    const ParamTable* params = nullptr;              // --define values that param() returns
 };
 
 struct LoadedScene {
     render::SceneSpec spec;
     std::shared_ptr<const render::Scene> scene;  // null unless options.build
     CheckSummary summary;
-    double parse_seconds = 0;  // read + lex + parse + evaluate + lower
+    std::vector<Span> shape_spans;  // where each of spec.shapes is written (its keyword or OBJ path)
+    double parse_seconds = 0;       // read + lex + parse + evaluate + lower
     double build_seconds = 0;
 };
 

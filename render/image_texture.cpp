@@ -1,6 +1,7 @@
 // Image files for textures: decoding through stb_image (8-bit sRGB → linear through the exact
-// curve, 16-bit PNG through the same curve, HDR already linear), the per-scene cache that loads
-// each path once, and the bilinear lookup with wrap/clamp addressing (robustness.md T14, R49).
+// curve, 16-bit PNG through the same curve, HDR already linear), PFM (linear) through the image
+// reader of image_io.h, the per-scene cache that loads each path once, and the bilinear lookup
+// with wrap/clamp addressing (robustness.md T14, R49).
 #include <stb_image.h>
 #include <sys/stat.h>
 
@@ -13,6 +14,7 @@
 #include <memory>
 #include <new>
 
+#include "render/image_io.h"
 #include "render/texture.h"
 
 namespace wsd::render {
@@ -43,6 +45,37 @@ std::string stb_reason() {
     return r ? r : "unknown decoding error";
 }
 
+// Values a texture may hold: finite and >= 0 (a PFM can store anything, NaN included).
+void keep_finite_non_negative(std::vector<float>& rgb) {
+    for (float& c : rgb)
+        if (!(c >= 0.0f) || !std::isfinite(c)) c = 0.0f;
+}
+
+// PFM, the linear format wsd writes, which stb_image does not read: "PF" or "Pf" first.
+bool is_pfm(std::FILE* f) {
+    char magic[2] = {0, 0};
+    const bool pfm =
+        std::fread(magic, 1, 2, f) == 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f');
+    std::rewind(f);
+    return pfm;
+}
+
+std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& label, std::string& error) {
+    Film film;
+    if (!read_image(path, film, error)) return nullptr;
+    if (static_cast<long long>(film.width) * film.height > kMaxImagePixels) {
+        error = "image " + label + " is too large (" + std::to_string(film.width) + "x" +
+                std::to_string(film.height) + "; at most " + std::to_string(kMaxImagePixels) + " pixels)";
+        return nullptr;
+    }
+    auto image = std::make_shared<Image>();
+    image->width = film.width;
+    image->height = film.height;
+    image->rgb = std::move(film.rgb);
+    keep_finite_non_negative(image->rgb);
+    return image;
+}
+
 // Decodes an already opened image file; `label` is the quoted path for messages.
 std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::string& error) {
     int w = 0, h = 0, n = 0;
@@ -50,7 +83,14 @@ std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::strin
         error = "cannot decode image " + label + ": " + stb_reason();
         return nullptr;
     }
-    if (w <= 0 || h <= 0 || static_cast<long long>(w) * h > kMaxImagePixels) {
+    // A truncated file can pass stb's header check with no size at all (a GIF cut after its
+    // signature reads as 0x0): that is a broken file, not a large one.
+    if (w <= 0 || h <= 0) {
+        error = "cannot decode image " + label + ": the file is corrupt or in an unsupported format (" +
+                "its header gives the size " + std::to_string(w) + "x" + std::to_string(h) + ")";
+        return nullptr;
+    }
+    if (static_cast<long long>(w) * h > kMaxImagePixels) {
         error = "image " + label + " is too large (" + std::to_string(w) + "x" + std::to_string(h) +
                 "; at most " + std::to_string(kMaxImagePixels) + " pixels)";
         return nullptr;
@@ -67,8 +107,7 @@ std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::strin
         image->rgb.assign(data, data + count);
         stbi_image_free(data);
         // RGBE cannot encode NaN, but keep the promise that texture values are finite and >= 0.
-        for (float& c : image->rgb)
-            if (!(c >= 0.0f) || !std::isfinite(c)) c = 0.0f;
+        keep_finite_non_negative(image->rgb);
     } else if (stbi_is_16_bit_from_file(f)) {
         stbi_us* data = stbi_load_from_file_16(f, &w, &h, &n, 3);
         if (!data) return fail();
@@ -122,6 +161,7 @@ std::shared_ptr<const Image> load_image(const std::string& path, std::string& er
         return nullptr;
     }
     try {
+        if (is_pfm(file.get())) return decode_pfm(path, label, error);
         return decode(file.get(), label, error);
     } catch (const std::bad_alloc&) {
         error = "cannot load image " + label + ": out of memory";

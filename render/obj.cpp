@@ -15,7 +15,6 @@
 #include <limits>
 #include <memory>
 #include <new>
-#include <set>
 
 namespace wsd::render {
 
@@ -132,6 +131,9 @@ private:
         return false;
     }
     void note_ignored(std::string_view keyword, bool known);
+    void summarise_ignored();
+    bool degenerate(const Corner& a, const Corner& b, const Corner& c) const;
+    void skip_degenerate(uint32_t line) const;
     bool statement(std::string_view line);
     bool read_numbers(std::string_view keyword, std::string_view rest, double* out, size_t min, size_t max,
                       size_t& count);
@@ -148,7 +150,18 @@ private:
     uint32_t line_ = 0;
     std::string error_;
     std::vector<std::string> notes_;
-    std::set<std::string, std::less<>> noted_;
+    // Statements skipped, by kind in order of first appearance: one note sums them up.
+    struct Ignored {
+        std::string keyword;
+        bool known;
+        uint32_t first_line;
+        size_t count;
+    };
+    std::vector<Ignored> ignored_;
+    size_t ignored_total_ = 0;
+    // Zero-area triangles left out of the mesh (build() is const; these are its only output).
+    mutable size_t degenerate_ = 0;
+    mutable uint32_t first_degenerate_line_ = 0;
     std::vector<glm::vec3> positions_;
     std::vector<glm::vec2> texcoords_;
     std::vector<glm::vec3> normals_;
@@ -159,11 +172,33 @@ private:
 };
 
 void ObjParser::note_ignored(std::string_view keyword, bool known) {
-    if (noted_.size() >= kMaxNotes || noted_.count(keyword) != 0) return;
-    noted_.emplace(keyword);
-    const std::string what = known ? "(not used by wsd)" : "(unknown OBJ statement)";
-    notes_.push_back(name_ + ":" + std::to_string(line_) + ": note: ignoring '" + printable(keyword) + "' " +
-                     what);
+    ++ignored_total_;
+    for (Ignored& i : ignored_)
+        if (i.keyword == keyword) {
+            ++i.count;
+            return;
+        }
+    if (ignored_.size() < kMaxNotes) ignored_.push_back({std::string(keyword), known, line_, 1});
+}
+
+// "FILE:LINE: ignored 12 statements that wsd does not use: 'o' (line 1), 'usemtl' (9, from
+// line 5), 'foo' (unknown OBJ statement, line 7)", LINE being the first of them.
+void ObjParser::summarise_ignored() {
+    if (ignored_.empty()) return;
+    std::string note = name_ + ":" + std::to_string(ignored_.front().first_line) + ": ignored " +
+                       std::to_string(ignored_total_) + (ignored_total_ == 1 ? " statement" : " statements") +
+                       " that wsd does not use: ";
+    size_t listed = 0;
+    for (const Ignored& i : ignored_) {
+        note += (listed++ ? ", '" : "'") + printable(i.keyword) + "' (";
+        if (!i.known) note += "unknown OBJ statement, ";
+        if (i.count > 1) note += std::to_string(i.count) + ", from ";
+        note += "line " + std::to_string(i.first_line) + ")";
+    }
+    size_t shown = 0;
+    for (const Ignored& i : ignored_) shown += i.count;
+    if (shown < ignored_total_) note += ", and " + std::to_string(ignored_total_ - shown) + " of other kinds";
+    notes_.push_back(std::move(note));
 }
 
 bool ObjParser::read_numbers(std::string_view keyword, std::string_view rest, double* out, size_t min,
@@ -401,6 +436,19 @@ glm::vec3 flat_normal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c
     return glm::vec3(n / len);
 }
 
+// Zero area by the scene builder's own test (|e1 × e2| ≤ 1e-12·|e1||e2|), here in the file's
+// coordinates: a pole quad of a UV sphere that repeats a vertex fans into one such triangle.
+bool ObjParser::degenerate(const Corner& a, const Corner& b, const Corner& c) const {
+    const glm::dvec3 v0(positions_[a.v]), v1(positions_[b.v]), v2(positions_[c.v]);
+    const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0;
+    const double cr = glm::length(glm::cross(e1, e2));
+    return !(cr > 1e-12 * glm::length(e1) * glm::length(e2));
+}
+
+void ObjParser::skip_degenerate(uint32_t line) const {
+    if (degenerate_++ == 0) first_degenerate_line_ = line;
+}
+
 std::shared_ptr<MeshData> ObjParser::build() const {
     auto mesh = std::make_shared<MeshData>();
     mesh->source_name = name_;
@@ -411,8 +459,13 @@ std::shared_ptr<MeshData> ObjParser::build() const {
         mesh->vertices = positions_;
         for (const Face& f : faces_) {
             for (uint32_t k = 1; k + 1 < f.count; ++k) {
-                mesh->faces.emplace_back(corners_[f.first].v, corners_[f.first + k].v,
-                                         corners_[f.first + k + 1].v);
+                const Corner &a = corners_[f.first], &b = corners_[f.first + k],
+                             &c = corners_[f.first + k + 1];
+                if (degenerate(a, b, c)) {
+                    skip_degenerate(f.line);
+                    continue;
+                }
+                mesh->faces.emplace_back(a.v, b.v, c.v);
                 mesh->face_lines.push_back(f.line);
             }
         }
@@ -442,6 +495,10 @@ std::shared_ptr<MeshData> ObjParser::build() const {
     for (const Face& f : faces_) {
         for (uint32_t k = 1; k + 1 < f.count; ++k) {
             Corner tri[3] = {corners_[f.first], corners_[f.first + k], corners_[f.first + k + 1]};
+            if (degenerate(tri[0], tri[1], tri[2])) {
+                skip_degenerate(f.line);
+                continue;
+            }
             uint32_t out[3];
             const bool flat = any_vn_ && tri[0].vn == kNone;
             const glm::vec3 fn =
@@ -560,12 +617,26 @@ ObjResult ObjParser::run(std::string_view text) {
         ok = fail("no faces: an OBJ mesh needs at least one 'f' statement");
     }
     if (ok) ok = check_indices();
+    summarise_ignored();
+    std::shared_ptr<MeshData> mesh;
+    if (ok) mesh = build();
+    if (mesh && degenerate_ > 0) {
+        line_ = first_degenerate_line_;
+        if (mesh->faces.empty()) {
+            ok = fail("every face is degenerate (zero area): the mesh has no triangle to draw");
+        } else {
+            notes_.push_back(name_ + ":" + std::to_string(first_degenerate_line_) + ": skipped " +
+                             std::to_string(degenerate_) +
+                             (degenerate_ == 1 ? " degenerate triangle" : " degenerate triangles") +
+                             " (zero area), the first from this line's face");
+        }
+    }
     result.notes = std::move(notes_);
     if (!ok) {
         result.error = std::move(error_);
         return result;
     }
-    result.mesh = build();
+    result.mesh = std::move(mesh);
     return result;
 }
 

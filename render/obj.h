@@ -1,5 +1,7 @@
 // Wavefront OBJ reading: v, vt, vn, f (polygons fan-triangulated; negative indices; v, v/vt,
-// v/vt/vn and v//vn forms). Comments and unused statements (usemtl, mtllib, o, g, s) are skipped.
+// v/vt/vn and v//vn forms). Comments and unused statements (usemtl, mtllib, o, g, s) are skipped
+// with one note per file; so are zero-area triangles (a UV sphere's pole quads repeat a vertex),
+// with one note that counts them, unless no triangle is left.
 #pragma once
 
 #include <memory>
@@ -14,7 +16,8 @@ namespace wsd::render {
 struct ObjResult {
     std::shared_ptr<MeshData> mesh;  // null on error
     std::string error;               // "FILE:LINE: message" on error
-    std::vector<std::string> notes;  // at most one per skipped statement kind, "FILE:LINE: ..."
+    // "FILE:LINE: ..." at most two: the skipped statements, the skipped zero-area triangles.
+    std::vector<std::string> notes;
 };
 
 // The language's limit on a mesh's triangle count (wsd-language.md §5: 2^24 primitives).

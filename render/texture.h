@@ -18,7 +18,7 @@ struct Image {
     std::vector<float> rgb;  // linear, row-major from the top row, 3 floats a pixel
 };
 
-// Loads PNG/JPEG/BMP/TGA (sRGB → linear) and HDR (linear). On failure returns nullptr and sets
+// Loads PNG/JPEG/BMP/TGA (sRGB → linear) and HDR and PFM (linear). On failure returns nullptr and sets
 // `error` to a message naming the path that was tried and the reason. Images above
 // kMaxImagePixels are refused (a 20-byte header can claim 4 billion pixels).
 inline constexpr long long kMaxImagePixels = 1LL << 27;

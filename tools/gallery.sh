@@ -30,8 +30,7 @@ done
 # Figure 5: the other three lights of soft-shadows.wsd (variant 3 is the file's own).
 for v in 0 1 2; do
   # shellcheck disable=SC2046
-  sed "s/^let variant = [0-9]/let variant = $v/" examples/soft-shadows.wsd |
-    render "soft-shadows-$v" - $(size_of soft-shadows.wsd)
+  render "soft-shadows-$v" soft-shadows.wsd $(size_of soft-shadows.wsd) -D "variant=$v"
 done
 # Figure 6: one ray per pixel (the file's own setting is a jittered 4×4 grid).
 # shellcheck disable=SC2046

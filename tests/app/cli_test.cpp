@@ -60,8 +60,8 @@ TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
     CHECK(r.status == 0);
     CHECK(r.err.empty());
     const std::regex line(
-        "s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 lights, 2 materials\n"
-        "frag\\.wsdi: ok \xE2\x80\x94 1 objects, 0 triangles, 0 lights, 1 materials\n");
+        "s\\.wsd: ok \xE2\x80\x94 2 objects, 0 triangles, 1 light, 2 materials\n"
+        "frag\\.wsdi: ok \xE2\x80\x94 1 object, 0 triangles, 0 lights, 1 material\n");
     CHECK(std::regex_match(r.out, line));
 }
 
@@ -138,8 +138,9 @@ TEST_CASE("check --effects names the effects and the objects that call for each"
     bool reflection = false, texture = false, soft = false;
     while (std::getline(lines, line)) {
         if (line.find("reflection") != std::string::npos)
-            reflection = line.find("sphere #2") != std::string::npos;
-        if (line.find("textures") != std::string::npos) texture = line.find("plane #1") != std::string::npos;
+            reflection = line.find("sphere at s.wsd:5:1") != std::string::npos;
+        if (line.find("textures") != std::string::npos)
+            texture = line.find("plane at s.wsd:4:1") != std::string::npos;
         if (line.find("area") != std::string::npos) soft = true;
     }
     CHECK(reflection);
@@ -148,4 +149,50 @@ TEST_CASE("check --effects names the effects and the objects that call for each"
     // Without the flag, only the ok line.
     const std::string plain = run_wsd(dir, "check s.wsd").out;
     CHECK(std::count(plain.begin(), plain.end(), '\n') == 1);
+}
+
+TEST_CASE("an unknown command is named, with a did-you-mean; wsd help [COMMAND] works", "[cli]") {
+    TempDir dir;
+    write_file(dir / "x.wsd", tiny_scene());
+    RunResult r = run_wsd(dir, "rendr x.wsd");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'rendr'; did you mean 'render'?") != std::string::npos);
+    r = run_wsd(dir, "frobnicate");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'frobnicate'") != std::string::npos);
+    r = run_wsd(dir, "");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("a command is required: check ast render") != std::string::npos);
+
+    r = run_wsd(dir, "help");
+    CHECK(r.status == 0);
+    for (const char* command : {"check", "ast", "render", "diff", "bench", "merge"})
+        CHECK(r.out.find(command) != std::string::npos);
+    r = run_wsd(dir, "help render");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("Usage: wsd render") != std::string::npos);
+    CHECK(r.out.find("--supersamples") != std::string::npos);
+    r = run_wsd(dir, "help rendr");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("unknown command 'rendr'; did you mean 'render'?") != std::string::npos);
+}
+
+TEST_CASE("an integer option given something else says it is not an integer", "[cli]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    for (const char* option :
+         {"--width", "--height", "--supersamples", "--light-samples", "--max-depth", "--seed", "--threads"}) {
+        const RunResult r = run_wsd(dir, std::string("render s.wsd ") + option + " abc");
+        CHECK(r.status == 2);
+        CHECK(r.err.find(std::string(option) + ": 'abc' is not an integer") != std::string::npos);
+    }
+    for (const char* option : {"--repeat", "--reference-supersamples", "--reference-light-samples",
+                               "--reference-depth", "--threads", "--width", "--height"}) {
+        const RunResult r = run_wsd(dir, std::string("bench s.wsd ") + option + " 1.5");
+        CHECK(r.status == 2);
+        CHECK(r.err.find(std::string(option) + ": '1.5' is not an integer") != std::string::npos);
+    }
+    const RunResult r = run_wsd(dir, "render s.wsd --width 0");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--width: 0 is not in the range 1 to 100000") != std::string::npos);
 }

@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 
+#include "render/image_io.h"
 #include "render/noise.h"
 #include "render/texture.h"
 
@@ -181,6 +182,54 @@ TEST_CASE("R49: lookups at extreme uv stay inside the image", "[texture]") {
     for (double u : values) check_color(sample_image(one, {u, 0.5}, true), Color(0.1f, 0.2f, 0.3f), 0);
     // An empty image gives black rather than reading anything.
     CHECK(sample_image(Image{}, {0.5, 0.5}, false) == Color(0.0));
+}
+
+TEST_CASE("a PFM image, as wsd writes it, loads as linear floats", "[texture]") {
+    // 3×2, with values above 1 and one that no 8-bit format could hold; NaN, Inf and negatives
+    // become 0 like every other texture value that is not finite and >= 0.
+    Film film;
+    film.width = 3;
+    film.height = 2;
+    film.rgb = {0.0f,    0.25f,
+                1.0f,    7.5f,
+                0.001f,  0.5f,
+                1e-7f,   2.0f,
+                3.0f,    0.75f,
+                0.125f,  4.0f,
+                -1.0f,   std::numeric_limits<float>::quiet_NaN(),
+                0.5f,    std::numeric_limits<float>::infinity(),
+                0.0625f, 0.3f};
+    const std::string path = (temp_dir() / "written.pfm").string();
+    std::string error;
+    REQUIRE(write_image(path, film, error));
+    auto image = load_image(path, error);
+    INFO(error);
+    REQUIRE(image);
+    REQUIRE(image->width == 3);
+    REQUIRE(image->height == 2);
+    std::vector<float> expected = film.rgb;
+    expected[12] = expected[13] = expected[15] = 0.0f;
+    CHECK(image->rgb == expected);
+    // The lookup at a texel's centre returns it exactly (top row first, like every image).
+    const Color c = sample_image(*image, Vec2(1.5 / 3.0, 0.25), false);
+    CHECK(c.r == Approx(7.5).margin(1e-6));
+    CHECK(c.g == Approx(0.001).margin(1e-6));
+
+    const std::string cut = (temp_dir() / "cut.pfm").string();
+    std::ofstream(cut, std::ios::binary) << "PF\n3 2\n-1.0\n" << std::string(10, '\0');
+    error.clear();
+    CHECK_FALSE(load_image(cut, error));
+    CHECK(error.find(cut) != std::string::npos);
+    CHECK(error.find("malformed PFM") != std::string::npos);
+}
+
+TEST_CASE("a truncated GIF is corrupt, not too large", "[texture]") {
+    const std::string path = (temp_dir() / "cut.gif").string();
+    std::ofstream(path, std::ios::binary) << "GIF89a";
+    std::string error;
+    CHECK_FALSE(load_image(path, error));
+    CHECK(error == "cannot decode image '" + path +
+                       "': the file is corrupt or in an unsupported format (its header gives the size 0x0)");
 }
 
 TEST_CASE("image errors name the path; the cache loads a file once", "[texture]") {
