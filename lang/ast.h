@@ -27,7 +27,7 @@ enum class ExprKind {
     List,        // args = elements
     PackedList,  // packed = a list whose elements are all numeric vector literals of one size
     Unary,       // unary_op, args[0]; op_span = the operator
-    Binary,      // binary_op, args[0], args[1]; op_span = the operator
+    Binary,      // args = 2 or more operands, ops = the operators between them (one level)
     Call,        // text = function name, op_span = the name, args = arguments
     Member,      // text = field name (x y z r g b u v), op_span = the name, args[0] = operand
     Index,       // args[0] = operand, args[1] = index; op_span = the '['
@@ -82,6 +82,12 @@ struct PackedVectors {
     size_t size() const { return offsets.size(); }
 };
 
+// One operator of a binary chain, with its span (where its errors point).
+struct BinaryLink {
+    BinaryOp op;
+    Span span;
+};
+
 struct Expr {
     ExprKind kind = ExprKind::Bad;
     Span span;
@@ -89,8 +95,8 @@ struct Expr {
     bool boolean = false;
     std::string text;
     UnaryOp unary_op = UnaryOp::Neg;
-    BinaryOp binary_op = BinaryOp::Add;
     Span op_span;
+    std::vector<BinaryLink> ops;  // Binary: ops[i] stands between args[i] and args[i + 1]
     std::vector<ExprPtr> args;
     std::unique_ptr<Block> block;
     std::shared_ptr<const PackedVectors> packed;

@@ -118,6 +118,7 @@ private:
     void expr(const Expr& e);
     void block(const Block& b);
     void packed(const Expr& e);
+    void binary(const Expr& e);
 
     // line_col, but counting columns on from the previous position when it is on the same line
     // before this one (the usual case: nodes print in source order), so that a dump of a long
@@ -225,8 +226,8 @@ void Printer::expr(const Expr& e) {
             open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span);
             break;
         case ExprKind::Binary:
-            open(std::string("binary ") + binary_op_text(e.binary_op), e.op_span);
-            break;
+            binary(e);
+            return;
         case ExprKind::Call:
             open("call " + e.text, e.span);
             break;
@@ -251,6 +252,24 @@ void Printer::expr(const Expr& e) {
     }
     for (const ExprPtr& a : e.args) expr(*a);
     if (e.block) block(*e.block);
+    close();
+}
+
+// Two operands as (binary OP a b) at the operator; a longer chain of one level flat, its operators
+// between the operands: (chain a (op + ) b (op - ) c ...), at its start.
+void Printer::binary(const Expr& e) {
+    if (e.args.size() == 2) {
+        open(std::string("binary ") + binary_op_text(e.ops[0].op), e.ops[0].span);
+        expr(*e.args[0]);
+        expr(*e.args[1]);
+        close();
+        return;
+    }
+    open("chain", e.span);
+    for (size_t i = 0; i < e.args.size(); ++i) {
+        if (i > 0) leaf(std::string("op ") + binary_op_text(e.ops[i - 1].op), e.ops[i - 1].span);
+        expr(*e.args[i]);
+    }
     close();
 }
 

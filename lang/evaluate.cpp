@@ -164,78 +164,101 @@ std::optional<Value> Interpreter::eval_unary(const Expr& expr) {
     return std::nullopt;
 }
 
+// `a && b && ...`, `a || b || ...`: short-circuit from the left, each operand evaluated only when
+// it can decide the result. Values, errors and their spans are those of the left-deep tree the
+// chain stands for: step i's result spans operands 0 to i, an error points at its operator.
 std::optional<Value> Interpreter::eval_logical(const Expr& expr) {
-    // Short-circuit: the right operand runs only when it decides the result.
-    const bool is_or = expr.binary_op == BinaryOp::Or;
+    const BinaryOp op = expr.ops[0].op;
+    const bool is_or = op == BinaryOp::Or;
+    auto needs_bools = [&](size_t link, const Value& v, const char* side) {
+        diags_.error(expr.ops[link].span,
+                     quoted(binary_op_text(op)) + " needs bools, found " + type_name(v.type()) + side);
+    };
     std::optional<Value> a = eval(*expr.args[0]);
     if (!a) return std::nullopt;
     if (!a->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
-                                       type_name(a->type()) + " on the left");
+        needs_bools(0, *a, " on the left");
         return std::nullopt;
     }
-    if (a->boolean() == is_or) return Value::make_bool(is_or, expr.span);
-    std::optional<Value> b = eval(*expr.args[1]);
-    if (!b) return std::nullopt;
-    if (!b->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
-                                       type_name(b->type()) + " on the right");
-        return std::nullopt;
+    bool result = a->boolean();
+    for (size_t i = 1; i < expr.args.size(); ++i) {
+        if (result == is_or) break;
+        std::optional<Value> b = eval(*expr.args[i]);
+        if (!b) return std::nullopt;
+        if (!b->is(ValueType::Bool)) {
+            needs_bools(i - 1, *b, " on the right");
+            return std::nullopt;
+        }
+        result = b->boolean();
     }
-    return Value::make_bool(b->boolean(), expr.span);
+    return Value::make_bool(result, expr.span);
 }
 
+// A chain of one level, left to right: `a - b + c` is `(a - b) + c`. Every operand is evaluated
+// even after a step failed (as the tree would), so independent errors are all reported.
 std::optional<Value> Interpreter::eval_binary(const Expr& expr) {
-    if (expr.args.size() != 2) return std::nullopt;
-    if (expr.binary_op == BinaryOp::And || expr.binary_op == BinaryOp::Or) return eval_logical(expr);
-    std::optional<Value> a = eval(*expr.args[0]);
-    std::optional<Value> b = eval(*expr.args[1]);
-    if (!a || !b) return std::nullopt;
-    switch (expr.binary_op) {
-        case BinaryOp::Eq:
-        case BinaryOp::Ne:
-        case BinaryOp::Lt:
-        case BinaryOp::Le:
-        case BinaryOp::Gt:
-        case BinaryOp::Ge:
-            return compare(expr, *a, *b);
-        default:
-            return arithmetic(expr, *a, *b);
+    const BinaryOp first = expr.ops[0].op;
+    if (first == BinaryOp::And || first == BinaryOp::Or) return eval_logical(expr);
+    std::optional<Value> acc = eval(*expr.args[0]);
+    const size_t n = expr.args.size();
+    for (size_t i = 1; i < n; ++i) {
+        std::optional<Value> b = eval(*expr.args[i]);
+        if (!acc || !b) {
+            acc.reset();
+            continue;
+        }
+        const Span span =
+            i + 1 == n ? expr.span : Span{expr.span.file, expr.args[0]->span.begin, expr.args[i]->span.end};
+        const BinaryStep step{expr.ops[i - 1].op, expr.ops[i - 1].span, span};
+        switch (step.op) {
+            case BinaryOp::Eq:
+            case BinaryOp::Ne:
+            case BinaryOp::Lt:
+            case BinaryOp::Le:
+            case BinaryOp::Gt:
+            case BinaryOp::Ge:
+                acc = compare(step, *acc, *b);
+                break;
+            default:
+                acc = arithmetic(step, *acc, *b);
+                break;
+        }
     }
+    return acc;
 }
 
-std::optional<Value> Interpreter::compare(const Expr& expr, const Value& a, const Value& b) {
-    const BinaryOp op = expr.binary_op;
+std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a, const Value& b) {
+    const BinaryOp op = step.op;
     const std::string sym = quoted(binary_op_text(op));
     if (op == BinaryOp::Eq || op == BinaryOp::Ne) {
         if (a.type() != b.type()) {
-            diags_.error(expr.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
+            diags_.error(step.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
                                            type_name(b.type()) + " using " + sym);
             return std::nullopt;
         }
         if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture)) {
-            diags_.error(expr.op_span,
+            diags_.error(step.op_span,
                          std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
             return std::nullopt;
         }
         bool equal = values_equal(a, b);
-        return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, expr.span);
+        return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, step.span);
     }
     if (!a.is(ValueType::Number) || !b.is(ValueType::Number)) {
-        diags_.error(expr.op_span,
+        diags_.error(step.op_span,
                      sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
         return std::nullopt;
     }
     const double x = a.number(), y = b.number();
     bool r = op == BinaryOp::Lt ? x < y : op == BinaryOp::Le ? x <= y : op == BinaryOp::Gt ? x > y : x >= y;
-    return Value::make_bool(r, expr.span);
+    return Value::make_bool(r, step.span);
 }
 
-std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, const Value& b) {
-    const BinaryOp op = expr.binary_op;
+std::optional<Value> Interpreter::arithmetic(const BinaryStep& step, const Value& a, const Value& b) {
+    const BinaryOp op = step.op;
     const std::string sym = quoted(binary_op_text(op));
     auto fail = [&](const std::string& message) -> std::optional<Value> {
-        diags_.error(expr.op_span, message);
+        diags_.error(step.op_span, message);
         return std::nullopt;
     };
     auto mismatch = [&]() {
@@ -244,14 +267,14 @@ std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, c
     };
     auto result = [&](ValueType type, glm::dvec3 v) -> std::optional<Value> {
         if (!finite3(v)) return fail("result of " + sym + " is not a finite number");
-        if (type == ValueType::Number) return Value::make_number(v.x, expr.span);
-        return make_vector(type, v, expr.span);
+        if (type == ValueType::Number) return Value::make_number(v.x, step.span);
+        return make_vector(type, v, step.span);
     };
 
     if (a.is(ValueType::String) && b.is(ValueType::String) && op == BinaryOp::Add) {
         if (a.string().size() + b.string().size() > kMaxStringLength)
             return fail("string longer than the limit of " + std::to_string(kMaxStringLength) + " bytes");
-        return Value::make_string(a.string() + b.string(), expr.span);
+        return Value::make_string(a.string() + b.string(), step.span);
     }
     if (a.is(ValueType::Number) && b.is(ValueType::Number)) {
         const double x = a.number(), y = b.number();

@@ -23,8 +23,9 @@ struct Limits {
     uint64_t loop_iterations = 100'000'000;  // in total
     size_t primitives = size_t(1) << 24;
     int include_depth = 64;
-    // The parser limits nesting to 256; this guards the evaluator's own recursion whatever the
-    // AST (statements and expressions counted together).
+    // The parser limits nesting to 256 levels a file (a chain of one operator level is one
+    // node); this guards the evaluator's own recursion over the whole scene, where includes
+    // nested in bodies add up (statements and expressions counted together).
     int eval_depth = 600;
 };
 
@@ -93,8 +94,14 @@ private:
     std::optional<Value> eval_call(const Expr& expr);
     std::optional<Value> eval_member(const Expr& expr);
     std::optional<Value> eval_index(const Expr& expr);
-    std::optional<Value> arithmetic(const Expr& expr, const Value& a, const Value& b);
-    std::optional<Value> compare(const Expr& expr, const Value& a, const Value& b);
+    // One step of a binary chain: its operator, where its errors point, and its result's span.
+    struct BinaryStep {
+        BinaryOp op;
+        Span op_span;
+        Span span;
+    };
+    std::optional<Value> arithmetic(const BinaryStep& step, const Value& a, const Value& b);
+    std::optional<Value> compare(const BinaryStep& step, const Value& a, const Value& b);
 
     // scopes
     void push_scope();

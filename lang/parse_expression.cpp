@@ -61,9 +61,12 @@ BinaryInfo binary_info(TokenKind k) {
 // v_and_expr = v_equality { "&&" v_equality } ;
 // v_equality = additive { ( "==" | "!=" ) additive } ;
 // One precedence-climbing loop for all levels: operands of an operator of precedence p are
-// parsed at p + 1, so a chain of any length uses constant stack.
+// parsed at p + 1, so a chain of any length uses constant stack. Operators of one level in a row
+// (`a + b - c + ...`) make one flat Binary node, not a left-deep tree: a generated 100,000-term
+// sum is one node with 100,000 operands, which every later pass walks with a loop.
 ExprPtr Parser::parse_binary(int min_precedence) {
     ExprPtr left = parse_unary();
+    int chain_precedence = 0;  // the level of `left` while it is a chain this loop is building
     for (;;) {
         const BinaryInfo info = binary_info(tok_.kind);
         if (info.precedence == 0 || info.precedence < min_precedence) break;
@@ -77,12 +80,17 @@ ExprPtr Parser::parse_binary(int min_precedence) {
         const Token op = tok_;
         advance();
         ExprPtr right = parse_binary(info.precedence + 1);
-        ExprPtr e = make(ExprKind::Binary, {file_, left->span.begin, right->span.end});
-        e->binary_op = info.op;
-        e->op_span = span_of(op);
-        e->args.push_back(std::move(left));
-        e->args.push_back(std::move(right));
-        left = std::move(e);
+        // Levels only fall along one loop (higher ones were taken by the recursive call), so a
+        // different level means `left` becomes the first operand of a new chain.
+        if (chain_precedence != info.precedence) {
+            ExprPtr chain = make(ExprKind::Binary, left->span);
+            chain->args.push_back(std::move(left));
+            left = std::move(chain);
+            chain_precedence = info.precedence;
+        }
+        left->ops.push_back({info.op, span_of(op)});
+        left->span.end = right->span.end;
+        left->args.push_back(std::move(right));
     }
     return left;
 }

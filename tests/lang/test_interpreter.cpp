@@ -103,6 +103,61 @@ TEST_CASE("operators follow the precedence table", "[interpreter]") {
     CHECK(boolean("2 >= 2 && 2 <= 2 && !(2 > 2)"));
 }
 
+TEST_CASE("a chain of one level evaluates left to right", "[interpreter][chain]") {
+    CHECK(num("1 + 2 + 3 + 4 + 5") == 15);
+    CHECK(num("10 - 1 - 2 - 3") == 4);
+    CHECK(num("10 - 1 + 2 - 3 + 4") == 12);
+    CHECK(num("2 * 3 * 4 * 5") == 120);
+    CHECK(num("100 / 2 / 5 * 3 % 7") == 2);
+    CHECK(num("1 + 2 * 3 * 2 - 4 / 2 / 2 + 1") == 13);
+    CHECK(num("(1 + 2 + 3) * (4 - 2 - 1)") == 6);
+    CHECK(num("1e308 - 1e308 + 1e308") == 1e308);  // (1e308 - 1e308) + 1e308: no overflow
+    CHECK(vec3("<1, 1, 1> + <1, 2, 3> - <0, 1, 0> * 2 + <1, 0, 0>") == glm::dvec3(3, 1, 4));
+    CHECK(value_of("\"a\" + \"b\" + \"c\"")->string() == "abc");
+    CHECK(boolean("true && true && true && 1 < 2"));
+    CHECK_FALSE(boolean("true && true && false && true"));
+    CHECK(boolean("false || false || false || true"));
+    CHECK_FALSE(boolean("false || false || false"));
+    CHECK(boolean("1 < 2 == true != false"));
+    CHECK(boolean("false || true && false || true"));
+}
+
+TEST_CASE("a chain's errors point where the left-deep tree's did", "[interpreter][chain][errors]") {
+    // `a + b + c` means `(a + b) + c`: a failing `a + b` is reported at its own operator, and the
+    // operands after it are still evaluated (their errors reported) but not combined.
+    CHECK(errors_of("1 + \"a\" + 2") ==
+          std::vector<std::string>{"1:11: operator '+' cannot combine number and string"});
+    CHECK(errors_of("1 + 1 + 1 / 0 + \"a\"") == std::vector<std::string>{"1:19: division by zero"});
+    CHECK(errors_of("1 / 0 + 2 / 0 + 3") ==
+          std::vector<std::string>{"1:11: division by zero", "1:19: division by zero"});
+    CHECK(errors_of("1 + 2 + \"a\" - 3") ==
+          std::vector<std::string>{"1:15: operator '+' cannot combine number and string"});
+    CHECK(errors_of("\"a\" + \"b\" - 1") ==
+          std::vector<std::string>{"1:19: operator '-' cannot combine string and number"});
+    CHECK(errors_of("1e308 + 1e308 - 1e308") ==
+          std::vector<std::string>{"1:15: result of '+' is not a finite number"});
+    // Short-circuit from the left: nothing after the deciding operand runs.
+    CHECK(errors_of("false && 1 / 0 == 1 && 1 / 0 == 1").empty());
+    CHECK(errors_of("true || undefined || undefined").empty());
+    CHECK(errors_of("true && true && 1") ==
+          std::vector<std::string>{"1:22: '&&' needs bools, found number on the right"});
+    CHECK(errors_of("1 && true && true") ==
+          std::vector<std::string>{"1:11: '&&' needs bools, found number on the left"});
+    CHECK(errors_of("false || false || 2 || true") ==
+          std::vector<std::string>{"1:24: '||' needs bools, found number on the right"});
+    CHECK(errors_of("1 < 2 < 3") ==
+          std::vector<std::string>{"1:15: '<' compares numbers, found bool and number"});
+}
+
+TEST_CASE("a flat 601-term sum is not nesting", "[interpreter][chain][limits]") {
+    std::string sum = "1";
+    for (int i = 1; i < 601; ++i) sum += " + 1";
+    CHECK(num(sum) == 601);
+    std::string product = "1";
+    for (int i = 1; i < 5000; ++i) product += " * 1";
+    CHECK(num(product) == 1);
+}
+
 TEST_CASE("% is fmod and keeps the sign of the dividend", "[interpreter]") {
     CHECK(num("7 % 3") == 1);
     CHECK(num("-7 % 3") == -1);

@@ -65,6 +65,14 @@ std::string shape(const Expr& e) {
         case ExprKind::PackedList:
             s << "(packed " << e.packed->dims << "x" << e.packed->size() << ")";
             break;
+        case ExprKind::Binary: {
+            // A flat chain shown as the left-deep tree it means: a - b + c is (+ (- a b) c).
+            std::string acc = shape(*e.args[0]);
+            for (size_t i = 1; i < e.args.size(); ++i)
+                acc = std::string("(") + op_name(e.ops[i - 1].op) + " " + acc + " " + shape(*e.args[i]) + ")";
+            s << acc;
+            break;
+        }
         default: {
             s << '(';
             switch (e.kind) {
@@ -76,9 +84,6 @@ std::string shape(const Expr& e) {
                     break;
                 case ExprKind::Unary:
                     s << (e.unary_op == UnaryOp::Neg ? "neg" : "not");
-                    break;
-                case ExprKind::Binary:
-                    s << op_name(e.binary_op);
                     break;
                 case ExprKind::Call:
                     s << "call " << e.text;
@@ -121,6 +126,28 @@ std::string expr_shape(const std::string& expr) {
 }
 
 }  // namespace
+
+TEST_CASE("operators of one level in a row make one flat chain", "[parser][chain]") {
+    const auto p = parse_text("let x = 1 - 2 + 3 - 4 * 5 * 6 + (7 + 8) + 9");
+    REQUIRE(p->errors().empty());
+    const Expr& sum = *p->program.statements[0]->value;
+    REQUIRE(sum.kind == ExprKind::Binary);
+    REQUIRE(sum.args.size() == 6);  // 1, 2, 3, 4 * 5 * 6, (7 + 8), 9
+    REQUIRE(sum.ops.size() == 5);
+    CHECK(sum.ops[0].op == BinaryOp::Sub);
+    CHECK(sum.ops[1].op == BinaryOp::Add);
+    CHECK(sum.ops[2].op == BinaryOp::Sub);
+    CHECK(sum.args[3]->args.size() == 3);  // 4 * 5 * 6
+    CHECK(sum.args[4]->args.size() == 2);  // parentheses close a chain
+    CHECK(p->sources.line_col(sum.ops[2].span.file, sum.ops[2].span.begin).column == 19);
+    CHECK(sum.span.begin == 8);
+    CHECK(sum.span.end == 43);
+    const auto logic = parse_text("let x = a && b && c || d || e && f");
+    const Expr& any = *logic->program.statements[0]->value;
+    REQUIRE(any.args.size() == 3);  // a && b && c, d, e && f
+    CHECK(any.args[0]->args.size() == 3);
+    CHECK(any.args[2]->args.size() == 2);
+}
 
 TEST_CASE("operator precedence and associativity", "[parser]") {
     CHECK(expr_shape("1 + 2 * 3") == "(+ 1 (* 2 3))");
