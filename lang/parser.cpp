@@ -194,7 +194,7 @@ Stmt* Parser::parse_let() {
     if (parse_name(s->name, s->name_span, "let")) {
         if (check(TokenKind::Assign)) {
             advance();
-            s->value = parse_expression();
+            if (!colour_function_before_vector()) s->value = parse_expression();
         } else {
             error_here("expected '=' after 'let " + std::string(s->name) + "', found " + found());
         }
@@ -362,7 +362,9 @@ bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
     std::vector<Item> items;
     if (triangle && starts_vertex_list()) {
         const Span at{file_, tok_.begin, tok_.begin};
-        items.push_back({{}, at, parse_value_list("")});
+        Item vertices{{}, at, {}};
+        vertices.values = parse_value_list(vertices);
+        items.push_back(vertices);
     }
     for (;;) {
         if (panic_) {
@@ -431,25 +433,66 @@ Item Parser::parse_item() {
         item.values = keep(std::vector<Expr*>{e});
         return item;
     }
-    item.values = parse_value_list(item.name);
+    item.values = parse_value_list(item);
     return item;
 }
 
 // value_list = expression { "," expression } ;
-ExprList Parser::parse_value_list(std::string_view item) {
+// A list ends at the first token that cannot continue an expression, so two slips read
+// wrongly as values get messages of their own, at the word that caused them: POV-Ray's
+// `color rgb <1, 0, 0>` (a function name before a vector, which parses as `rgb < 1`, ...) and a
+// property with no value, `center radius 1` (where `radius` becomes the centre's value).
+ExprList Parser::parse_value_list(const Item& item) {
     if (!starts_expression(tok_.kind)) {
-        if (item.empty())
+        if (item.name.empty())
             error_here("expected a value, found " + found());
         else
-            error_here("expected a value for '" + std::string(item) + "', found " + found());
+            error_here("expected a value for '" + std::string(item.name) + "', found " + found());
         return keep(std::vector<Expr*>{bad_here()});
     }
+    if (colour_function_before_vector()) return keep(std::vector<Expr*>{bad_here()});
     std::vector<Expr*> values{parse_expression()};
     while (!panic_ && check(TokenKind::Comma)) {
         advance();
         values.push_back(parse_expression());
     }
+    const bool literal_follows = check(TokenKind::Number) || check(TokenKind::String) ||
+                                 check(TokenKind::True) || check(TokenKind::False);
+    if (!panic_ && !item.name.empty() && values.size() == 1 && values[0]->kind == ExprKind::Ident &&
+        literal_follows) {
+        const std::string word(values[0]->as<IdentExpr>().name);
+        if (Diagnostic* d = error(item.name_span, "'" + std::string(item.name) + "' has no value"))
+            d->help.push_back("'" + word + "' is read as its value, and " + found() +
+                              " is left over; write a value after '" + std::string(item.name) + "'");
+    }
     return keep(values);
+}
+
+// `rgb <1, 0, 0>` or `srgb <...>` as an item's or a let's value: the colour functions written as
+// POV-Ray's colour keywords. Reported at the name (true) when a vector literal follows on the same line.
+bool Parser::colour_function_before_vector() {
+    if (!check(TokenKind::Ident)) return false;
+    const std::string_view name = lexeme(tok_);
+    if ((name != "rgb" && name != "srgb") || peek().kind != TokenKind::Less) return false;
+    // The raw text up to the closing '>': numbers, signs and at least one comma.
+    size_t p = peek().end, commas = 0;
+    while (p < text_.size() && text_[p] != '>') {
+        const char c = text_[p];
+        if (c == ',') {
+            ++commas;
+        } else if (!(c == ' ' || c == '\t' || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E' ||
+                     (c >= '0' && c <= '9'))) {
+            return false;
+        }
+        ++p;
+    }
+    if (p == text_.size() || commas == 0) return false;
+    const std::string vector(text_.substr(peek().begin, p + 1 - peek().begin));
+    const std::string example = name == "rgb" ? "rgb(255, 0, 0)" : "srgb(1, 0, 0)";
+    if (Diagnostic* d = error_here("'" + std::string(name) + "' is a function, not a colour keyword"))
+        d->help.push_back("call it with parentheses, " + example +
+                          ", or write the colour as a vector: " + vector);
+    return true;
 }
 
 }  // namespace detail

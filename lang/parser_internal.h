@@ -93,7 +93,8 @@ private:
     bool parse_block(Block& block, const std::string& what, bool triangle);  // true: '}' consumed
     bool starts_vertex_list();
     Item parse_item();
-    ExprList parse_value_list(std::string_view item);
+    ExprList parse_value_list(const Item& item);
+    bool colour_function_before_vector();
 
     // ---- expressions ----
     Expr* parse_expression() { return parse_binary(1); }
