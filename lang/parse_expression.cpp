@@ -128,9 +128,14 @@ Expr* Parser::parse_unary() {
 }
 
 // postfix = primary { "." IDENT | "[" expression "]" } ;
+// Each field or index nests the tree one level deeper (its operand is inside it), so each counts
+// against the nesting limit like a parenthesis: `a[0][0]...` is nesting, not a flat chain.
 Expr* Parser::parse_postfix() {
     Expr* e = parse_primary();
+    int levels = 0;
     while (!panic_) {
+        if ((check(TokenKind::Dot) || check(TokenKind::LBracket)) && !enter(tok_)) break;
+        ++levels;
         if (check(TokenKind::Dot)) {
             advance();
             if (!check(TokenKind::Ident)) {
@@ -161,9 +166,11 @@ Expr* Parser::parse_postfix() {
             ix->bracket = span_of(open);
             e = ix;
         } else {
+            --levels;
             break;
         }
     }
+    for (; levels > 0; --levels) leave();
     return e;
 }
 

@@ -449,6 +449,8 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
         "let x = " + nested("<", "1, 2", ", 3>", 10'000),
         "let x = " + nested("-", "1", "", 10'000),
         "let x = " + nested("f(", "1", ")", 10'000),
+        "let x = " + nested("", "a", "[0]", 100'000),
+        "let x = " + nested("", "a", ".x", 100'000),
         nested("if true { ", "", "}", 10'000),
         "let m = " + nested("material { base ", "m", " }", 10'000),
         "sphere { material " + nested("{ base material ", "m", "}", 10'000) + " }",
@@ -465,6 +467,7 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
     }
     // Just under the limit is fine.
     CHECK(parse_text("let x = " + nested("(", "1", ")", 200))->errors().empty());
+    CHECK(parse_text("let x = " + nested("", "a", "[0]", 250))->errors().empty());
     CHECK(parse_text(nested("if true { ", "", "}", 200))->errors().empty());
 }
 
