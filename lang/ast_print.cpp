@@ -119,6 +119,7 @@ private:
     void block(const Block& b);
     void packed(const PackedListExpr& e);
     void binary(const BinaryExpr& e);
+    void nested(const Expr& e);
     void children(const std::string& label, Span at, ExprList items);
 
     // line_col, but counting columns on from the previous position when it is on the same line
@@ -236,6 +237,21 @@ void Printer::expr(const Expr& e) {
             children("call " + std::string(call.name), e.span, call.args);
             return;
         }
+        case ExprKind::Unary:
+        case ExprKind::Member:
+        case ExprKind::Index:
+        case ExprKind::Material:
+        case ExprKind::Checker:
+        case ExprKind::Perlin:
+        case ExprKind::Image:
+            nested(e);
+            return;
+    }
+}
+
+// The nodes with one operand or a block inside: the line of the node, then what it holds.
+void Printer::nested(const Expr& e) {
+    switch (e.kind) {
         case ExprKind::Unary: {
             const auto& u = e.as<UnaryExpr>();
             open(u.op == UnaryOp::Neg ? "unary -" : "unary !", e.span);
@@ -255,18 +271,16 @@ void Printer::expr(const Expr& e) {
             expr(*ix.index);
             break;
         }
-        case ExprKind::Material:
-        case ExprKind::Checker:
-        case ExprKind::Perlin:
+        case ExprKind::Image:
+            open("image", e.span);
+            expr(*e.as<ImageExpr>().path);
+            break;
+        default:  // Material, Checker, Perlin
             open(e.kind == ExprKind::Material  ? "material"
                  : e.kind == ExprKind::Checker ? "checker"
                                                : "perlin",
                  e.span);
             block(*e.as<BlockExpr>().block);
-            break;
-        case ExprKind::Image:
-            open("image", e.span);
-            expr(*e.as<ImageExpr>().path);
             break;
     }
     close();
