@@ -650,9 +650,11 @@ TEST_CASE("a flat chain of 150,000 terms checks, loads and prints", "[hard-cases
         // The whole front end, as `wsd check` runs it, with the value used by an object.
         const std::string use = c.value == -1 ? "sphere { center <0, 0, 0>  radius 1  material { } }\n"
                                               : "sphere { center <0, 0, x * 0>  radius 1  material { } }\n";
-        const Outcome out = load(camera + "let x = " + c.text + "\n" + use);
-        CHECK(out.errors.empty());
-        CHECK(out.loaded);
+        for (const bool build : {true, false}) {  // `wsd check`, and the load without building
+            const Outcome out = load(camera + "let x = " + c.text + "\n" + use, "r54.wsd", build);
+            CHECK(out.errors.empty());
+            CHECK(out.loaded);
+        }
     }
     // The AST dump prints the chain flat: one operand and one operator a line.
     SourceManager sources;
