@@ -1,7 +1,8 @@
-// Front-end throughput: generates a 1,000,000-triangle inline mesh scene (about 45 MB of text)
-// a 100,000-sphere `for` loop scene and 100,000 spheres written out in memory, then times lex+parse and the
-// whole load_scene (build = false), and reports MB/s and the peak resident memory per triangle. Usage:
-// bench_parse [triangles]   (prints measured numbers only)
+// Front-end throughput: generates a 1,000,000-triangle inline mesh scene (about 45 MB of text),
+// a 100,000-sphere `for` loop scene and 100,000 spheres written out one by one, in memory; times
+// lex+parse and the whole load_scene (build = false), and reports MB/s and the peak resident
+// memory (per triangle for the mesh).
+// Usage: bench_parse [triangles]   (prints measured numbers only)
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -474,17 +474,16 @@ bool Parser::colour_function_before_vector() {
     if (!check(TokenKind::Ident)) return false;
     const std::string_view name = lexeme(tok_);
     if ((name != "rgb" && name != "srgb") || peek().kind != TokenKind::Less) return false;
-    // The raw text up to the closing '>': numbers, signs and at least one comma.
+    // The raw text up to the closing '>' on the same line: components made of numbers, names,
+    // arithmetic and parentheses, and at least one comma.
     size_t p = peek().end, commas = 0;
-    while (p < text_.size() && text_[p] != '>') {
-        const char c = text_[p];
-        if (c == ',') {
+    const std::string_view component_chars =
+        " \t.+-*/()_0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    for (; p < text_.size() && text_[p] != '>'; ++p) {
+        if (text_[p] == ',')
             ++commas;
-        } else if (!(c == ' ' || c == '\t' || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E' ||
-                     (c >= '0' && c <= '9'))) {
+        else if (component_chars.find(text_[p]) == std::string_view::npos)
             return false;
-        }
-        ++p;
     }
     if (p == text_.size() || commas == 0) return false;
     const std::string vector(text_.substr(peek().begin, p + 1 - peek().begin));
