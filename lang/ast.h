@@ -3,9 +3,10 @@
 // nodes.go is the model). Nodes are allocated in the Program's arena and linked by plain pointers:
 // a tree of any shape is freed at once, without recursion, and a node costs only its fields.
 //
-// Passes dispatch with a switch over the node's kind tag and `as<T>()`, not with a visitor: a
-// pass is one readable function per pass, and with no `default:` in those switches, -Wswitch
-// names every pass that does not handle a kind yet — adding a node kind is an enum value, a
+// Passes dispatch with a switch over the node's kind tag and `as<T>()`, not with a visitor: each
+// pass keeps its cases together in one function with its own arguments and results (a visitor
+// would force one signature on every pass), and as those switches have no `default:`, -Wswitch
+// names every pass that does not handle a new kind yet. Adding a node kind is an enum value, a
 // struct, and the cases the compiler asks for. Large lists of numeric vector literals (mesh
 // vertices and faces) are stored packed — numbers plus each element's source offset — instead of
 // one node per number.
