@@ -33,7 +33,9 @@ Value make_numeric(const Numeric& n, Span span) {
 }
 
 std::string quoted_name(const CallContext& c) {
-    return "'" + std::string(c.call.name) + "'";
+    std::string quoted = "'";
+    quoted.append(c.call.name).append("'");
+    return quoted;
 }
 
 void type_error(const CallContext& c, size_t i, const char* expected) {

@@ -391,8 +391,9 @@ std::optional<Value> Interpreter::eval_member(const MemberExpr& expr) {
                      "vector2 has no component " + quoted(field) + " (it has x, y and u, v)");
         return std::nullopt;
     }
-    diags_.error(expr.field_span,
-                 quoted("." + std::string(field)) + " needs a vector, found " + type_name(v->type()));
+    std::string access = ".";
+    access += field;
+    diags_.error(expr.field_span, quoted(access) + " needs a vector, found " + type_name(v->type()));
     return std::nullopt;
 }
 
