@@ -1,42 +1,27 @@
-// The abstract syntax tree: what the parser builds and the interpreter walks. Every node has a
-// span. Large lists of numeric vector literals (mesh vertices and faces) are stored packed —
-// numbers plus each element's source offset — instead of one heap node per number.
+// The abstract syntax tree: what the parser builds and the interpreter walks. Each production
+// has its own node type with its span and only its fields (Go's cmd/compile/internal/syntax
+// nodes.go is the model). Nodes are allocated in the Program's arena and linked by plain pointers:
+// a tree of any shape is freed at once, without recursion, and a node costs only its fields.
+//
+// Passes dispatch with a switch over the node's kind tag and `as<T>()`, not with a visitor: each
+// pass keeps its cases together in one function with its own arguments and results (a visitor
+// would force one signature on every pass), and as those switches have no `default:`, -Wswitch
+// names every pass that does not handle a new kind yet. Adding a node kind is an enum value, a
+// struct, and the cases the compiler asks for. Large lists of numeric vector literals (mesh
+// vertices and faces) are stored packed — numbers plus each element's source offset — instead of
+// one node per number.
 #pragma once
 
 #include <cstdint>
 #include <memory>
-#include <string>
+#include <span>
+#include <string_view>
 #include <vector>
 
+#include "lang/arena.h"
 #include "lang/source.h"
 
 namespace wsd::lang {
-
-struct Expr;
-struct Stmt;
-struct Block;
-using ExprPtr = std::unique_ptr<Expr>;
-using StmtPtr = std::unique_ptr<Stmt>;
-
-enum class ExprKind {
-    Number,      // number
-    String,      // text (escapes already decoded)
-    Bool,        // boolean (`true` / `false`)
-    Ident,       // text = name
-    Vector,      // args = 2 or 3 components
-    List,        // args = elements
-    PackedList,  // packed = a list whose elements are all numeric vector literals of one size
-    Unary,       // unary_op, args[0]; op_span = the operator
-    Binary,      // binary_op, args[0], args[1]; op_span = the operator
-    Call,        // text = function name, op_span = the name, args = arguments
-    Member,      // text = field name (x y z r g b u v), op_span = the name, args[0] = operand
-    Index,       // args[0] = operand, args[1] = index; op_span = the '['
-    Material,    // block = the material block (`material { ... }`)
-    Image,       // args[0] = path expression (`image "file.png"`)
-    Checker,     // block (`checker { ... }`)
-    Perlin,      // block (`perlin { ... }`)
-    Bad,         // placeholder after a syntax error: later passes skip it
-};
 
 enum class UnaryOp { Neg, Not };
 enum class BinaryOp { Or, And, Eq, Ne, Lt, Le, Gt, Ge, Add, Sub, Mul, Div, Mod };
@@ -82,65 +67,182 @@ struct PackedVectors {
     size_t size() const { return offsets.size(); }
 };
 
-struct Expr {
-    ExprKind kind = ExprKind::Bad;
-    Span span;
-    double number = 0;
-    bool boolean = false;
-    std::string text;
-    UnaryOp unary_op = UnaryOp::Neg;
-    BinaryOp binary_op = BinaryOp::Add;
-    Span op_span;
-    std::vector<ExprPtr> args;
-    std::unique_ptr<Block> block;
-    std::shared_ptr<const PackedVectors> packed;
+// ---- expressions --------------------------------------------------------------------------------
+
+enum class ExprKind : uint8_t {
+    Number,      // NumberExpr
+    String,      // StringExpr
+    Bool,        // BoolExpr
+    Ident,       // IdentExpr
+    Vector,      // VectorExpr
+    List,        // ListExpr
+    PackedList,  // PackedListExpr: a list whose elements are all numeric vector literals of one size
+    Unary,       // UnaryExpr
+    Binary,      // BinaryExpr
+    Call,        // CallExpr
+    Member,      // MemberExpr
+    Index,       // IndexExpr
+    Material,    // BlockExpr (`material { ... }`)
+    Image,       // ImageExpr (`image "file.png"`)
+    Checker,     // BlockExpr (`checker { ... }`)
+    Perlin,      // BlockExpr (`perlin { ... }`)
+    Bad,         // Expr alone: a placeholder after a syntax error (the program is never run)
 };
 
-// One `name value, value, ...` item of a block. A triangle's leading vertices form an item with
-// an empty name. Values are expressions; enumerated values (`kind marble`, `sampling uniform`) are
-// Ident expressions whose name the interpreter reads as a word.
-struct Item {
-    std::string name;
+// The common head of every expression node. `as<T>()` is the checked-by-construction downcast:
+// the kind tag says which node type this is.
+struct Expr {
+    ExprKind kind;
+    Span span;
+    template <class T>
+    const T& as() const {
+        return static_cast<const T&>(*this);
+    }
+    template <class T>
+    T& as() {
+        return static_cast<T&>(*this);
+    }
+};
+
+using ExprList = std::span<Expr* const>;
+
+struct NumberExpr : Expr {
+    double value;
+};
+struct StringExpr : Expr {
+    std::string_view text;  // escapes already decoded
+};
+struct BoolExpr : Expr {
+    bool value;
+};
+struct IdentExpr : Expr {
+    std::string_view name;
+};
+struct VectorExpr : Expr {
+    ExprList components;  // 2 or 3
+};
+struct ListExpr : Expr {
+    ExprList elements;
+};
+struct PackedListExpr : Expr {
+    std::shared_ptr<const PackedVectors> packed;  // shared with list values: never copied
+};
+struct UnaryExpr : Expr {
+    UnaryOp op;
+    Span op_span;
+    Expr* operand;
+};
+// One operator of a binary chain, with its span (where its errors point).
+struct BinaryLink {
+    BinaryOp op;
+    Span span;
+};
+// Operators of one precedence level in a row: `a - b + c` is operands {a, b, c} and ops {-, +},
+// meaning ((a - b) + c). Two or more operands; the chain is flat, so its length costs no stack.
+struct BinaryExpr : Expr {
+    ExprList operands;
+    std::span<const BinaryLink> ops;  // ops[i] stands between operands[i] and operands[i + 1]
+};
+struct CallExpr : Expr {
+    std::string_view name;
     Span name_span;
-    std::vector<ExprPtr> values;
+    ExprList args;
+};
+struct MemberExpr : Expr {
+    Expr* operand;
+    std::string_view field;  // x y z r g b u v
+    Span field_span;
+};
+struct IndexExpr : Expr {
+    Expr* operand;
+    Expr* index;
+    Span bracket;  // the '['
+};
+struct Block;
+struct BlockExpr : Expr {  // Material, Checker, Perlin
+    Block* block;
+};
+struct ImageExpr : Expr {
+    Expr* path;
+};
+
+// ---- blocks -------------------------------------------------------------------------------------
+
+// One `name value, value, ...` item of a block. A triangle's leading vertices form an item with
+// an empty name. Enumerated values (`kind marble`, `sampling uniform`) are Ident expressions
+// whose name the interpreter reads as a word.
+struct Item {
+    std::string_view name;
+    Span name_span;
+    ExprList values;
 };
 
 // `{ item item ... }`. Blocks only hold items; statements never appear inside them.
 struct Block {
     Span open;   // the '{'
     Span close;  // the '}' (or where it was expected)
-    std::vector<Item> items;
+    std::span<const Item> items;
 };
 
-enum class StmtKind { Let, For, If, Include, Block, Bad };
-enum class BlockKind { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh };
+// ---- statements ---------------------------------------------------------------------------------
 
+enum class StmtKind : uint8_t { Let, For, If, Include, Object, Bad };
+enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh };
+
+// The common head of every statement node; `keyword` is its first token.
+struct Stmt {
+    StmtKind kind;
+    Span span;
+    Span keyword;
+    template <class T>
+    const T& as() const {
+        return static_cast<const T&>(*this);
+    }
+    template <class T>
+    T& as() {
+        return static_cast<T&>(*this);
+    }
+};
+
+using StmtList = std::span<Stmt* const>;
+
+struct LetStmt : Stmt {
+    std::string_view name;  // empty after a syntax error
+    Span name_span;
+    Expr* value;  // never null (Bad after a syntax error)
+};
+// `for name in value .. range_end { body }`, or `for name in value { body }` (range_end null).
+struct ForStmt : Stmt {
+    std::string_view name;
+    Span name_span;
+    Expr* value;  // never null
+    Expr* range_end;
+    StmtList body;
+};
 struct IfBranch {
-    ExprPtr condition;  // null for the final `else`
-    std::vector<StmtPtr> body;
+    Expr* condition;  // null for the final `else`
+    StmtList body;
     Span keyword;  // `if` or `else`
 };
-
-struct Stmt {
-    StmtKind kind = StmtKind::Bad;
-    Span span;
-    // Let: name = value. For: name in value .. range_end, or name in value (a list).
-    // Include: name = the path (decoded), name_span = the string literal.
-    // Block: block_kind; for lights name = the kind word (`point`, `area`), name_span its span.
-    std::string name;
+struct IfStmt : Stmt {
+    std::span<const IfBranch> branches;
+};
+struct IncludeStmt : Stmt {
+    std::string_view path;  // decoded
+    Span path_span;         // the string literal
+};
+// settings, camera, light, sphere, box, triangle, plane, mesh.
+struct ObjectStmt : Stmt {
+    BlockKind block_kind;
+    std::string_view name;  // lights: the kind word (`point`, `area`)
     Span name_span;
-    ExprPtr value;
-    ExprPtr range_end;
-    std::vector<IfBranch> branches;  // If
-    std::vector<StmtPtr> body;       // For
-    BlockKind block_kind = BlockKind::Settings;
-    Span keyword;  // the statement's first token
     Block block;
 };
 
 struct Program {
     uint32_t file = 0;
-    std::vector<StmtPtr> statements;
+    StmtList statements;
+    std::unique_ptr<Arena> arena = std::make_unique<Arena>();  // owns every node of the tree
 };
 
 // Deterministic dump: an indented S-expression, one node per line, each with @LINE:COL.

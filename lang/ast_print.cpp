@@ -63,7 +63,7 @@ std::string format_number(double v) {
     return std::string(buf, result.ptr);
 }
 
-std::string quote_string(const std::string& s) {
+std::string quote_string(std::string_view s) {
     std::string out = "\"";
     for (const char c : s) {
         switch (c) {
@@ -87,8 +87,8 @@ std::string quote_string(const std::string& s) {
 }
 
 // "a b", or "a" when b is empty (a name missing after a syntax error, a triangle's vertices).
-std::string join(const std::string& a, const std::string& b) {
-    return b.empty() ? a : a + " " + b;
+std::string join(const std::string& a, std::string_view b) {
+    return b.empty() ? a : a + " " + std::string(b);
 }
 
 class Printer {
@@ -117,7 +117,10 @@ private:
     }
     void expr(const Expr& e);
     void block(const Block& b);
-    void packed(const Expr& e);
+    void packed(const PackedListExpr& e);
+    void binary(const BinaryExpr& e);
+    void nested(const Expr& e);
+    void children(const std::string& label, Span at, ExprList items);
 
     // line_col, but counting columns on from the previous position when it is on the same line
     // before this one (the usual case: nodes print in source order), so that a dump of a long
@@ -148,36 +151,41 @@ private:
 
 void Printer::statement(const Stmt& s) {
     switch (s.kind) {
-        case StmtKind::Let:
-            open(join("let", s.name), s.span);
-            if (s.value) expr(*s.value);
+        case StmtKind::Let: {
+            const auto& let = s.as<LetStmt>();
+            open(join("let", let.name), s.span);
+            expr(*let.value);
             close();
             break;
-        case StmtKind::For:
-            open(join(join("for", s.name), s.range_end ? "range" : "list"), s.span);
-            if (s.value) expr(*s.value);
-            if (s.range_end) expr(*s.range_end);
-            for (const StmtPtr& b : s.body) statement(*b);
+        }
+        case StmtKind::For: {
+            const auto& loop = s.as<ForStmt>();
+            open(join(join("for", loop.name), loop.range_end ? "range" : "list"), s.span);
+            expr(*loop.value);
+            if (loop.range_end) expr(*loop.range_end);
+            for (const Stmt* b : loop.body) statement(*b);
             close();
             break;
+        }
         case StmtKind::If:
             open("if", s.span);
-            for (const IfBranch& branch : s.branches) {
+            for (const IfBranch& branch : s.as<IfStmt>().branches) {
                 open(branch.condition ? "branch" : "else", branch.keyword);
                 if (branch.condition) expr(*branch.condition);
-                for (const StmtPtr& b : branch.body) statement(*b);
+                for (const Stmt* b : branch.body) statement(*b);
                 close();
             }
             close();
             break;
         case StmtKind::Include:
-            leaf("include " + quote_string(s.name), s.span);
+            leaf("include " + quote_string(s.as<IncludeStmt>().path), s.span);
             break;
-        case StmtKind::Block: {
-            std::string label = block_name(s.block_kind);
-            if (s.block_kind == BlockKind::Light) label = join(label, s.name);
+        case StmtKind::Object: {
+            const auto& object = s.as<ObjectStmt>();
+            std::string label = block_name(object.block_kind);
+            if (object.block_kind == BlockKind::Light) label = join(label, object.name);
             open(label, s.span);
-            block(s.block);
+            block(object.block);
             close();
             break;
         }
@@ -190,7 +198,7 @@ void Printer::statement(const Stmt& s) {
 void Printer::block(const Block& b) {
     for (const Item& item : b.items) {
         open(join("item", item.name), item.name_span);
-        for (const ExprPtr& v : item.values) expr(*v);
+        for (const Expr* v : item.values) expr(*v);
         close();
     }
 }
@@ -198,64 +206,112 @@ void Printer::block(const Block& b) {
 void Printer::expr(const Expr& e) {
     switch (e.kind) {
         case ExprKind::Number:
-            leaf("number " + format_number(e.number), e.span);
+            leaf("number " + format_number(e.as<NumberExpr>().value), e.span);
             return;
         case ExprKind::String:
-            leaf("string " + quote_string(e.text), e.span);
+            leaf("string " + quote_string(e.as<StringExpr>().text), e.span);
             return;
         case ExprKind::Bool:
-            leaf(e.boolean ? "bool true" : "bool false", e.span);
+            leaf(e.as<BoolExpr>().value ? "bool true" : "bool false", e.span);
             return;
         case ExprKind::Ident:
-            leaf("ident " + e.text, e.span);
+            leaf("ident " + std::string(e.as<IdentExpr>().name), e.span);
             return;
         case ExprKind::Bad:
             leaf("bad", e.span);
             return;
         case ExprKind::PackedList:
-            packed(e);
+            packed(e.as<PackedListExpr>());
+            return;
+        case ExprKind::Binary:
+            binary(e.as<BinaryExpr>());
             return;
         case ExprKind::Vector:
-            open("vector", e.span);
-            break;
+            children("vector", e.span, e.as<VectorExpr>().components);
+            return;
         case ExprKind::List:
-            open("list", e.span);
-            break;
+            children("list", e.span, e.as<ListExpr>().elements);
+            return;
+        case ExprKind::Call: {
+            const auto& call = e.as<CallExpr>();
+            children("call " + std::string(call.name), e.span, call.args);
+            return;
+        }
         case ExprKind::Unary:
-            open(e.unary_op == UnaryOp::Neg ? "unary -" : "unary !", e.span);
-            break;
-        case ExprKind::Binary:
-            open(std::string("binary ") + binary_op_text(e.binary_op), e.op_span);
-            break;
-        case ExprKind::Call:
-            open("call " + e.text, e.span);
-            break;
         case ExprKind::Member:
-            open("member " + e.text, e.op_span);
-            break;
         case ExprKind::Index:
-            open("index", e.op_span);
-            break;
         case ExprKind::Material:
-            open("material", e.span);
+        case ExprKind::Checker:
+        case ExprKind::Perlin:
+        case ExprKind::Image:
+            nested(e);
+            return;
+    }
+}
+
+// The nodes with one operand or a block inside: the line of the node, then what it holds.
+void Printer::nested(const Expr& e) {
+    switch (e.kind) {
+        case ExprKind::Unary: {
+            const auto& u = e.as<UnaryExpr>();
+            open(u.op == UnaryOp::Neg ? "unary -" : "unary !", e.span);
+            expr(*u.operand);
             break;
+        }
+        case ExprKind::Member: {
+            const auto& m = e.as<MemberExpr>();
+            open("member " + std::string(m.field), m.field_span);
+            expr(*m.operand);
+            break;
+        }
+        case ExprKind::Index: {
+            const auto& ix = e.as<IndexExpr>();
+            open("index", ix.bracket);
+            expr(*ix.operand);
+            expr(*ix.index);
+            break;
+        }
         case ExprKind::Image:
             open("image", e.span);
+            expr(*e.as<ImageExpr>().path);
             break;
-        case ExprKind::Checker:
-            open("checker", e.span);
-            break;
-        case ExprKind::Perlin:
-            open("perlin", e.span);
+        default:  // Material, Checker, Perlin
+            open(e.kind == ExprKind::Material  ? "material"
+                 : e.kind == ExprKind::Checker ? "checker"
+                                               : "perlin",
+                 e.span);
+            block(*e.as<BlockExpr>().block);
             break;
     }
-    for (const ExprPtr& a : e.args) expr(*a);
-    if (e.block) block(*e.block);
+    close();
+}
+
+void Printer::children(const std::string& label, Span at, ExprList items) {
+    open(label, at);
+    for (const Expr* item : items) expr(*item);
+    close();
+}
+
+// Two operands as (binary OP a b) at the operator; a longer chain of one level flat, its operators
+// between the operands: (chain a (op + ) b (op - ) c ...), at its start.
+void Printer::binary(const BinaryExpr& e) {
+    if (e.operands.size() == 2) {
+        open(std::string("binary ") + binary_op_text(e.ops[0].op), e.ops[0].span);
+        expr(*e.operands[0]);
+        expr(*e.operands[1]);
+        close();
+        return;
+    }
+    open("chain", e.span);
+    for (size_t i = 0; i < e.operands.size(); ++i) {
+        if (i > 0) leaf(std::string("op ") + binary_op_text(e.ops[i - 1].op), e.ops[i - 1].span);
+        expr(*e.operands[i]);
+    }
     close();
 }
 
 // Each element as the generic parse would print it: `-1` is (unary - (number 1)).
-void Printer::packed(const Expr& e) {
+void Printer::packed(const PackedListExpr& e) {
     open("packed_list", e.span);
     const PackedVectors& p = *e.packed;
     for (size_t i = 0; i < p.size(); ++i) {
@@ -277,7 +333,7 @@ void Printer::packed(const Expr& e) {
 
 std::string print_ast(const Program& program, const SourceManager& sources) {
     Printer printer(sources);
-    for (const StmtPtr& s : program.statements) {
+    for (const Stmt* s : program.statements) {
         printer.statement(*s);
         printer.out += '\n';
     }

@@ -35,7 +35,9 @@ Value make_numeric(const Numeric& n, Span span) {
 }
 
 std::string quoted_name(const CallContext& c) {
-    return "'" + c.call.text + "'";
+    std::string quoted = "'";
+    quoted.append(c.call.name).append("'");
+    return quoted;
 }
 
 void type_error(const CallContext& c, size_t i, const char* expected) {
@@ -73,7 +75,7 @@ bool want_same(const CallContext& c, size_t i) {
 std::optional<Value> finite(const CallContext& c, const Numeric& n) {
     bool ok = std::isfinite(n.v.x) && std::isfinite(n.v.y) && std::isfinite(n.v.z);
     if (!ok) {
-        c.diags.error(c.call.op_span, "result of " + quoted_name(c) + " is not a finite number");
+        c.diags.error(c.call.name_span, "result of " + quoted_name(c) + " is not a finite number");
         return std::nullopt;
     }
     return make_numeric(n, c.call.span);
@@ -84,7 +86,7 @@ std::optional<Value> finite_number(const CallContext& c, double x) {
 }
 
 std::optional<Value> domain_error(const CallContext& c, const std::string& message) {
-    c.diags.error(c.call.op_span, message);
+    c.diags.error(c.call.name_span, message);
     return std::nullopt;
 }
 

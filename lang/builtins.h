@@ -14,7 +14,7 @@
 namespace wsd::lang {
 
 struct CallContext {
-    const Expr& call;                // op_span = the function's name, args = argument expressions
+    const CallExpr& call;            // the call: its name_span, its argument expressions
     const std::vector<Value>& args;  // evaluated arguments, one per call.args
     Diagnostics& diags;
 };

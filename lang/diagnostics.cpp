@@ -215,7 +215,7 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
     // Long words get a proportionally larger budget (about one edit per three letters), short
     // ones one edit; a candidate is never suggested if the edits would replace most of it.
     constexpr size_t max_word = 64;

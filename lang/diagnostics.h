@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lang/source.h"
@@ -58,6 +59,6 @@ std::vector<Note> notes_with_includes(const Diagnostic& diag);
 std::string format_diagnostics(const Diagnostics& diags, const SourceManager& sources);
 
 // "did you mean": the closest candidate within a small edit distance, or "".
-std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
 
 }  // namespace wsd::lang

@@ -39,36 +39,35 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
     if (!guard.ok() || stopped()) return std::nullopt;
     switch (expr.kind) {
         case ExprKind::Number:
-            return Value::make_number(expr.number, expr.span);
+            return Value::make_number(expr.as<NumberExpr>().value, expr.span);
         case ExprKind::String:
-            return Value::make_string(expr.text, expr.span);
+            return Value::make_string(std::string(expr.as<StringExpr>().text), expr.span);
         case ExprKind::Bool:
-            return Value::make_bool(expr.boolean, expr.span);
+            return Value::make_bool(expr.as<BoolExpr>().value, expr.span);
         case ExprKind::Ident:
-            return eval_ident(expr);
+            return eval_ident(expr.as<IdentExpr>());
         case ExprKind::Vector:
-            return eval_vector(expr);
+            return eval_vector(expr.as<VectorExpr>());
         case ExprKind::List:
-            return eval_list(expr);
+            return eval_list(expr.as<ListExpr>());
         case ExprKind::PackedList: {
-            if (!expr.packed) return std::nullopt;
             auto list = std::make_shared<ListValue>();
-            list->packed = expr.packed;  // shared with the AST: a million vertices are not copied
+            list->packed = expr.as<PackedListExpr>().packed;  // shared: a million vertices are not copied
             return Value::make_list(std::move(list), expr.span);
         }
         case ExprKind::Unary:
-            return eval_unary(expr);
+            return eval_unary(expr.as<UnaryExpr>());
         case ExprKind::Binary:
-            return eval_binary(expr);
+            return eval_binary(expr.as<BinaryExpr>());
         case ExprKind::Call:
-            return eval_call(expr);
+            return eval_call(expr.as<CallExpr>());
         case ExprKind::Member:
-            return eval_member(expr);
+            return eval_member(expr.as<MemberExpr>());
         case ExprKind::Index:
-            return eval_index(expr);
+            return eval_index(expr.as<IndexExpr>());
         case ExprKind::Material: {
             BlockContext ctx = context();
-            MaterialPtr m = lower_material(expr, ctx);
+            MaterialPtr m = lower_material(expr.as<BlockExpr>(), ctx);
             if (!m) return std::nullopt;
             Span span = m->span;
             return Value::make_material(std::move(m), span);
@@ -87,37 +86,40 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
     return std::nullopt;
 }
 
-std::optional<Value> Interpreter::eval_ident(const Expr& expr) {
-    if (const Binding* b = find(expr.text)) return b->value;  // empty if its definition failed
+std::optional<Value> Interpreter::eval_ident(const IdentExpr& expr) {
+    const std::string_view name = expr.name;
+    if (const Binding* b = find(name)) return b->value;  // empty if its definition failed
     for (const BuiltinConstant& c : builtin_constants()) {
-        if (c.name == expr.text) {
+        if (c.name == name) {
             Value v = c.value;
             v.set_span(expr.span);
             return v;
         }
     }
-    if (find_builtin(expr.text)) {
-        diags_.error(expr.span, quoted(expr.text) + " is a function: call it as " + expr.text + "(...)");
+    if (find_builtin(name)) {
+        diags_.error(expr.span, quoted(name) + " is a function: call it as " + std::string(name) + "(...)");
         return std::nullopt;
     }
-    Diagnostic& d = diags_.error(expr.span, "unknown name " + quoted(expr.text));
-    std::string match = closest_match(expr.text, visible_names());
+    Diagnostic& d = diags_.error(expr.span, "unknown name " + quoted(name));
+    std::string match = closest_match(name, visible_names());
     if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
     return std::nullopt;
 }
 
-std::optional<Value> Interpreter::eval_vector(const Expr& expr) {
+// The parser gives a vector literal 2 or 3 components.
+std::optional<Value> Interpreter::eval_vector(const VectorExpr& expr) {
     glm::dvec3 v(0.0);
     bool ok = true;
-    const size_t n = expr.args.size();
-    for (size_t i = 0; i < n && i < 3; ++i) {
-        std::optional<Value> c = eval(*expr.args[i]);
+    const size_t n = expr.components.size();
+    for (size_t i = 0; i < n; ++i) {
+        const Expr& component = *expr.components[i];
+        std::optional<Value> c = eval(component);
         if (!c) {
             ok = false;
             continue;
         }
         if (!c->is(ValueType::Number)) {
-            diags_.error(expr.args[i]->span,
+            diags_.error(component.span,
                          std::string("vector components must be numbers, found ") + type_name(c->type()));
             ok = false;
             continue;
@@ -126,16 +128,14 @@ std::optional<Value> Interpreter::eval_vector(const Expr& expr) {
     }
     if (!ok) return std::nullopt;
     if (n == 2) return Value::make_vec2({v.x, v.y}, expr.span);
-    if (n == 3) return Value::make_vec3(v, expr.span);
-    diags_.error(expr.span, "a vector has 2 or 3 components, found " + std::to_string(n));
-    return std::nullopt;
+    return Value::make_vec3(v, expr.span);
 }
 
-std::optional<Value> Interpreter::eval_list(const Expr& expr) {
+std::optional<Value> Interpreter::eval_list(const ListExpr& expr) {
     auto list = std::make_shared<ListValue>();
-    list->items.reserve(expr.args.size());
+    list->items.reserve(expr.elements.size());
     bool ok = true;
-    for (const ExprPtr& e : expr.args) {
+    for (const Expr* e : expr.elements) {
         std::optional<Value> v = eval(*e);
         if (!v) {
             ok = false;
@@ -148,11 +148,10 @@ std::optional<Value> Interpreter::eval_list(const Expr& expr) {
     return Value::make_list(std::move(list), expr.span);
 }
 
-std::optional<Value> Interpreter::eval_unary(const Expr& expr) {
-    if (expr.args.empty()) return std::nullopt;
-    std::optional<Value> v = eval(*expr.args[0]);
+std::optional<Value> Interpreter::eval_unary(const UnaryExpr& expr) {
+    std::optional<Value> v = eval(*expr.operand);
     if (!v) return std::nullopt;
-    if (expr.unary_op == UnaryOp::Not) {
+    if (expr.op == UnaryOp::Not) {
         if (v->is(ValueType::Bool)) return Value::make_bool(!v->boolean(), expr.span);
         diags_.error(expr.op_span, std::string("operator '!' needs a bool, found ") + type_name(v->type()));
         return std::nullopt;
@@ -164,78 +163,99 @@ std::optional<Value> Interpreter::eval_unary(const Expr& expr) {
     return std::nullopt;
 }
 
-std::optional<Value> Interpreter::eval_logical(const Expr& expr) {
-    // Short-circuit: the right operand runs only when it decides the result.
-    const bool is_or = expr.binary_op == BinaryOp::Or;
-    std::optional<Value> a = eval(*expr.args[0]);
+std::optional<Value> Interpreter::eval_logical(const BinaryExpr& expr) {
+    const BinaryOp op = expr.ops[0].op;
+    const bool is_or = op == BinaryOp::Or;
+    auto needs_bools = [&](size_t link, const Value& v, const char* side) {
+        diags_.error(expr.ops[link].span,
+                     quoted(binary_op_text(op)) + " needs bools, found " + type_name(v.type()) + side);
+    };
+    std::optional<Value> a = eval(*expr.operands[0]);
     if (!a) return std::nullopt;
     if (!a->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
-                                       type_name(a->type()) + " on the left");
+        needs_bools(0, *a, " on the left");
         return std::nullopt;
     }
-    if (a->boolean() == is_or) return Value::make_bool(is_or, expr.span);
-    std::optional<Value> b = eval(*expr.args[1]);
-    if (!b) return std::nullopt;
-    if (!b->is(ValueType::Bool)) {
-        diags_.error(expr.op_span, quoted(binary_op_text(expr.binary_op)) + " needs bools, found " +
-                                       type_name(b->type()) + " on the right");
-        return std::nullopt;
+    bool result = a->boolean();
+    for (size_t i = 1; i < expr.operands.size(); ++i) {
+        if (result == is_or) break;
+        std::optional<Value> b = eval(*expr.operands[i]);
+        if (!b) return std::nullopt;
+        if (!b->is(ValueType::Bool)) {
+            needs_bools(i - 1, *b, " on the right");
+            return std::nullopt;
+        }
+        result = b->boolean();
     }
-    return Value::make_bool(b->boolean(), expr.span);
+    return Value::make_bool(result, expr.span);
 }
 
-std::optional<Value> Interpreter::eval_binary(const Expr& expr) {
-    if (expr.args.size() != 2) return std::nullopt;
-    if (expr.binary_op == BinaryOp::And || expr.binary_op == BinaryOp::Or) return eval_logical(expr);
-    std::optional<Value> a = eval(*expr.args[0]);
-    std::optional<Value> b = eval(*expr.args[1]);
-    if (!a || !b) return std::nullopt;
-    switch (expr.binary_op) {
-        case BinaryOp::Eq:
-        case BinaryOp::Ne:
-        case BinaryOp::Lt:
-        case BinaryOp::Le:
-        case BinaryOp::Gt:
-        case BinaryOp::Ge:
-            return compare(expr, *a, *b);
-        default:
-            return arithmetic(expr, *a, *b);
+// A chain of one level, left to right: `a - b + c` is `(a - b) + c`. Every operand is evaluated
+// even after a step failed (as the tree would), so independent errors are all reported.
+std::optional<Value> Interpreter::eval_binary(const BinaryExpr& expr) {
+    const BinaryOp first = expr.ops[0].op;
+    if (first == BinaryOp::And || first == BinaryOp::Or) return eval_logical(expr);
+    std::optional<Value> acc = eval(*expr.operands[0]);
+    const size_t n = expr.operands.size();
+    for (size_t i = 1; i < n; ++i) {
+        std::optional<Value> b = eval(*expr.operands[i]);
+        if (!acc || !b) {
+            acc.reset();
+            continue;
+        }
+        const Span span =
+            i + 1 == n ? expr.span
+                       : Span{expr.span.file, expr.operands[0]->span.begin, expr.operands[i]->span.end};
+        const BinaryStep step{expr.ops[i - 1].op, expr.ops[i - 1].span, span};
+        switch (step.op) {
+            case BinaryOp::Eq:
+            case BinaryOp::Ne:
+            case BinaryOp::Lt:
+            case BinaryOp::Le:
+            case BinaryOp::Gt:
+            case BinaryOp::Ge:
+                acc = compare(step, *acc, *b);
+                break;
+            default:
+                acc = arithmetic(step, *acc, *b);
+                break;
+        }
     }
+    return acc;
 }
 
-std::optional<Value> Interpreter::compare(const Expr& expr, const Value& a, const Value& b) {
-    const BinaryOp op = expr.binary_op;
+std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a, const Value& b) {
+    const BinaryOp op = step.op;
     const std::string sym = quoted(binary_op_text(op));
     if (op == BinaryOp::Eq || op == BinaryOp::Ne) {
         if (a.type() != b.type()) {
-            diags_.error(expr.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
+            diags_.error(step.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
                                            type_name(b.type()) + " using " + sym);
             return std::nullopt;
         }
         if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture)) {
-            diags_.error(expr.op_span,
+            diags_.error(step.op_span,
                          std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
             return std::nullopt;
         }
         bool equal = values_equal(a, b);
-        return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, expr.span);
+        return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, step.span);
     }
     if (!a.is(ValueType::Number) || !b.is(ValueType::Number)) {
-        diags_.error(expr.op_span,
+        diags_.error(step.op_span,
                      sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
         return std::nullopt;
     }
     const double x = a.number(), y = b.number();
     bool r = op == BinaryOp::Lt ? x < y : op == BinaryOp::Le ? x <= y : op == BinaryOp::Gt ? x > y : x >= y;
-    return Value::make_bool(r, expr.span);
+    return Value::make_bool(r, step.span);
 }
 
-std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, const Value& b) {
-    const BinaryOp op = expr.binary_op;
+std::optional<Value> Interpreter::arithmetic(const BinaryStep& step, const Value& a, const Value& b) {
+    const BinaryOp op = step.op;
     const std::string sym = quoted(binary_op_text(op));
     auto fail = [&](const std::string& message) -> std::optional<Value> {
-        diags_.error(expr.op_span, message);
+        diags_.error(step.op_span, message);
         return std::nullopt;
     };
     auto mismatch = [&]() {
@@ -244,14 +264,14 @@ std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, c
     };
     auto result = [&](ValueType type, glm::dvec3 v) -> std::optional<Value> {
         if (!finite3(v)) return fail("result of " + sym + " is not a finite number");
-        if (type == ValueType::Number) return Value::make_number(v.x, expr.span);
-        return make_vector(type, v, expr.span);
+        if (type == ValueType::Number) return Value::make_number(v.x, step.span);
+        return make_vector(type, v, step.span);
     };
 
     if (a.is(ValueType::String) && b.is(ValueType::String) && op == BinaryOp::Add) {
         if (a.string().size() + b.string().size() > kMaxStringLength)
             return fail("string longer than the limit of " + std::to_string(kMaxStringLength) + " bytes");
-        return Value::make_string(a.string() + b.string(), expr.span);
+        return Value::make_string(a.string() + b.string(), step.span);
     }
     if (a.is(ValueType::Number) && b.is(ValueType::Number)) {
         const double x = a.number(), y = b.number();
@@ -304,12 +324,12 @@ std::optional<Value> Interpreter::arithmetic(const Expr& expr, const Value& a, c
     return mismatch();
 }
 
-std::optional<Value> Interpreter::eval_call(const Expr& expr) {
-    const std::string& name = expr.text;
+std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
+    const std::string_view name = expr.name;
     if (const Binding* b = find(name)) {
         if (!b->value) return std::nullopt;
         Diagnostic& d = diags_.error(
-            expr.op_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
+            expr.name_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
         d.notes.push_back({b->span, quoted(name) + " is defined here"});
         return std::nullopt;
     }
@@ -317,12 +337,12 @@ std::optional<Value> Interpreter::eval_call(const Expr& expr) {
     if (!f) {
         for (const BuiltinConstant& c : builtin_constants()) {
             if (c.name == name) {
-                diags_.error(expr.op_span,
+                diags_.error(expr.name_span,
                              quoted(name) + " is a " + type_name(c.value.type()) + ", not a function");
                 return std::nullopt;
             }
         }
-        Diagnostic& d = diags_.error(expr.op_span, "unknown function " + quoted(name));
+        Diagnostic& d = diags_.error(expr.name_span, "unknown function " + quoted(name));
         std::vector<std::string> names;
         for (const Builtin& g : builtin_functions()) names.emplace_back(g.name);
         std::string match = closest_match(name, names);
@@ -338,7 +358,7 @@ std::optional<Value> Interpreter::eval_call(const Expr& expr) {
     std::vector<Value> args;
     args.reserve(expr.args.size());
     bool ok = true;
-    for (const ExprPtr& e : expr.args) {
+    for (const Expr* e : expr.args) {
         std::optional<Value> v = eval(*e);
         if (!v) {
             ok = false;
@@ -350,42 +370,43 @@ std::optional<Value> Interpreter::eval_call(const Expr& expr) {
     return f->fn(CallContext{expr, args, diags_});
 }
 
-std::optional<Value> Interpreter::eval_member(const Expr& expr) {
-    if (expr.args.empty()) return std::nullopt;
-    std::optional<Value> v = eval(*expr.args[0]);
+std::optional<Value> Interpreter::eval_member(const MemberExpr& expr) {
+    std::optional<Value> v = eval(*expr.operand);
     if (!v) return std::nullopt;
-    const std::string& field = expr.text;
+    const std::string_view field = expr.field;
     if (v->is(ValueType::Vector3)) {
         int i = field == "x" || field == "r"   ? 0
                 : field == "y" || field == "g" ? 1
                 : field == "z" || field == "b" ? 2
                                                : -1;
         if (i >= 0) return Value::make_number(v->vec3()[i], expr.span);
-        diags_.error(expr.op_span,
+        diags_.error(expr.field_span,
                      "vector3 has no component " + quoted(field) + " (it has x, y, z and r, g, b)");
         return std::nullopt;
     }
     if (v->is(ValueType::Vector2)) {
         int i = field == "x" || field == "u" ? 0 : field == "y" || field == "v" ? 1 : -1;
         if (i >= 0) return Value::make_number(v->vec2()[i], expr.span);
-        diags_.error(expr.op_span, "vector2 has no component " + quoted(field) + " (it has x, y and u, v)");
+        diags_.error(expr.field_span,
+                     "vector2 has no component " + quoted(field) + " (it has x, y and u, v)");
         return std::nullopt;
     }
-    diags_.error(expr.op_span, quoted("." + field) + " needs a vector, found " + type_name(v->type()));
+    std::string access = ".";
+    access += field;
+    diags_.error(expr.field_span, quoted(access) + " needs a vector, found " + type_name(v->type()));
     return std::nullopt;
 }
 
-std::optional<Value> Interpreter::eval_index(const Expr& expr) {
-    if (expr.args.size() != 2) return std::nullopt;
-    std::optional<Value> base = eval(*expr.args[0]);
-    std::optional<Value> index = eval(*expr.args[1]);
+std::optional<Value> Interpreter::eval_index(const IndexExpr& expr) {
+    std::optional<Value> base = eval(*expr.operand);
+    std::optional<Value> index = eval(*expr.index);
     if (!base || !index) return std::nullopt;
     if (!base->is(ValueType::List)) {
-        diags_.error(expr.op_span, std::string("cannot index a ") + type_name(base->type()) +
+        diags_.error(expr.bracket, std::string("cannot index a ") + type_name(base->type()) +
                                        ": only lists can be indexed");
         return std::nullopt;
     }
-    const Span at = expr.args[1]->span;
+    const Span at = expr.index->span;
     if (!index->is(ValueType::Number)) {
         diags_.error(at, std::string("a list index must be a number, found ") + type_name(index->type()));
         return std::nullopt;

@@ -181,10 +181,10 @@ std::optional<Value> Interpreter::evaluate(const Expr& expr) {
     return eval(expr);
 }
 
-void Interpreter::exec_all(const std::vector<StmtPtr>& body) {
-    for (const StmtPtr& s : body) {
+void Interpreter::exec_all(StmtList body) {
+    for (const Stmt* s : body) {
         if (stopped()) return;
-        if (s) exec(*s);
+        exec(*s);
     }
 }
 
@@ -193,29 +193,27 @@ void Interpreter::exec(const Stmt& stmt) {
     if (!guard.ok()) return;
     switch (stmt.kind) {
         case StmtKind::Let:
-            exec_let(stmt);
+            exec_let(stmt.as<LetStmt>());
             break;
         case StmtKind::For:
-            exec_for(stmt);
+            exec_for(stmt.as<ForStmt>());
             break;
         case StmtKind::If:
-            exec_if(stmt);
+            exec_if(stmt.as<IfStmt>());
             break;
         case StmtKind::Include:
-            exec_include(stmt);
+            exec_include(stmt.as<IncludeStmt>());
             break;
-        case StmtKind::Block:
-            exec_block(stmt);
+        case StmtKind::Object:
+            exec_object(stmt.as<ObjectStmt>());
             break;
         case StmtKind::Bad:
             break;  // the parser reported it
     }
 }
 
-void Interpreter::exec_let(const Stmt& stmt) {
-    std::optional<Value> value;
-    if (stmt.value) value = eval(*stmt.value);
-    bind(stmt.name, stmt.name_span, std::move(value));
+void Interpreter::exec_let(const LetStmt& stmt) {
+    bind(stmt.name, stmt.name_span, eval(*stmt.value));
 }
 
 bool Interpreter::take_iterations(double count, Span at) {
@@ -233,7 +231,7 @@ bool Interpreter::take_iterations(double count, Span at) {
 
 // One iteration in a fresh scope; false stops the loop (after an error, so that a broken body is
 // reported once rather than once per iteration).
-bool Interpreter::run_loop_body(const Stmt& stmt, const Value& item) {
+bool Interpreter::run_loop_body(const ForStmt& stmt, const Value& item) {
     const size_t errors_before = diags_.error_count();
     push_scope();
     bind(stmt.name, stmt.name_span, item);
@@ -242,8 +240,7 @@ bool Interpreter::run_loop_body(const Stmt& stmt, const Value& item) {
     return !stopped() && diags_.error_count() == errors_before;
 }
 
-void Interpreter::exec_for(const Stmt& stmt) {
-    if (!stmt.value) return;
+void Interpreter::exec_for(const ForStmt& stmt) {
     if (stmt.range_end) {
         std::optional<Value> a = eval(*stmt.value);
         std::optional<Value> b = eval(*stmt.range_end);
@@ -285,7 +282,7 @@ void Interpreter::exec_for(const Stmt& stmt) {
         if (!run_loop_body(stmt, items->at(i, sources_))) break;
 }
 
-void Interpreter::exec_if(const Stmt& stmt) {
+void Interpreter::exec_if(const IfStmt& stmt) {
     for (const IfBranch& branch : stmt.branches) {
         if (branch.condition) {
             std::optional<Value> c = eval(*branch.condition);
@@ -304,14 +301,14 @@ void Interpreter::exec_if(const Stmt& stmt) {
     }
 }
 
-void Interpreter::exec_include(const Stmt& stmt) {
-    const Span at = stmt.name_span;
+void Interpreter::exec_include(const IncludeStmt& stmt) {
+    const Span at = stmt.path_span;
     if (include_depth_ >= limits_.include_depth) {
         diags_.error(at, "includes nested too deep (limit " + std::to_string(limits_.include_depth) + ")");
         abort();
         return;
     }
-    const std::string path = resolve_path(sources_, at.file, stmt.name);
+    const std::string path = resolve_path(sources_, at.file, std::string(stmt.path));
     const std::string key = canonical_path(path);
     auto on_stack = std::find(include_stack_.begin(), include_stack_.end(), key);
     if (on_stack != include_stack_.end()) {
@@ -367,7 +364,7 @@ void Interpreter::exec_include(const Stmt& stmt) {
     programs_.push_back(std::move(program));
 }
 
-void Interpreter::exec_block(const Stmt& stmt) {
+void Interpreter::exec_object(const ObjectStmt& stmt) {
     BlockContext ctx = context();
     switch (stmt.block_kind) {
         case BlockKind::Settings:

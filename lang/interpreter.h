@@ -23,8 +23,9 @@ struct Limits {
     uint64_t loop_iterations = 100'000'000;  // in total
     size_t primitives = size_t(1) << 24;
     int include_depth = 64;
-    // The parser limits nesting to 256; this guards the evaluator's own recursion whatever the
-    // AST (statements and expressions counted together).
+    // The parser limits nesting to 256 levels a file (a chain of one operator level is one
+    // node); this guards the evaluator's own recursion over the whole scene, where includes
+    // nested in bodies add up (statements and expressions counted together).
     int eval_depth = 600;
 };
 
@@ -78,29 +79,35 @@ private:
     };
 
     // statements
-    void exec_all(const std::vector<StmtPtr>& body);
+    void exec_all(StmtList body);
     void exec(const Stmt& stmt);
-    void exec_let(const Stmt& stmt);
-    void exec_for(const Stmt& stmt);
-    void exec_if(const Stmt& stmt);
-    void exec_include(const Stmt& stmt);
-    void exec_block(const Stmt& stmt);
-    bool run_loop_body(const Stmt& stmt, const Value& item);
+    void exec_let(const LetStmt& stmt);
+    void exec_for(const ForStmt& stmt);
+    void exec_if(const IfStmt& stmt);
+    void exec_include(const IncludeStmt& stmt);
+    void exec_object(const ObjectStmt& stmt);
+    bool run_loop_body(const ForStmt& stmt, const Value& item);
     bool take_iterations(double count, Span at);
 
     // expressions
     std::optional<Value> eval(const Expr& expr);
-    std::optional<Value> eval_ident(const Expr& expr);
-    std::optional<Value> eval_vector(const Expr& expr);
-    std::optional<Value> eval_list(const Expr& expr);
-    std::optional<Value> eval_unary(const Expr& expr);
-    std::optional<Value> eval_binary(const Expr& expr);
-    std::optional<Value> eval_logical(const Expr& expr);
-    std::optional<Value> eval_call(const Expr& expr);
-    std::optional<Value> eval_member(const Expr& expr);
-    std::optional<Value> eval_index(const Expr& expr);
-    std::optional<Value> arithmetic(const Expr& expr, const Value& a, const Value& b);
-    std::optional<Value> compare(const Expr& expr, const Value& a, const Value& b);
+    std::optional<Value> eval_ident(const IdentExpr& expr);
+    std::optional<Value> eval_vector(const VectorExpr& expr);
+    std::optional<Value> eval_list(const ListExpr& expr);
+    std::optional<Value> eval_unary(const UnaryExpr& expr);
+    std::optional<Value> eval_binary(const BinaryExpr& expr);
+    std::optional<Value> eval_logical(const BinaryExpr& expr);
+    std::optional<Value> eval_call(const CallExpr& expr);
+    std::optional<Value> eval_member(const MemberExpr& expr);
+    std::optional<Value> eval_index(const IndexExpr& expr);
+    // One step of a binary chain: its operator, where its errors point, and its result's span.
+    struct BinaryStep {
+        BinaryOp op;
+        Span op_span;
+        Span span;
+    };
+    std::optional<Value> arithmetic(const BinaryStep& step, const Value& a, const Value& b);
+    std::optional<Value> compare(const BinaryStep& step, const Value& a, const Value& b);
 
     // scopes
     void push_scope();

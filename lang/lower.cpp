@@ -252,7 +252,7 @@ render::Mat4 compose_transforms(const std::vector<Transform>& transforms) {
     return m;
 }
 
-std::optional<render::Settings> lower_settings(const Stmt& stmt, BlockContext& ctx) {
+std::optional<render::Settings> lower_settings(const ObjectStmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table("settings"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     render::Settings s;
     s.width = static_cast<int>(r.integer("width", s.width));
@@ -276,7 +276,7 @@ std::optional<render::Settings> lower_settings(const Stmt& stmt, BlockContext& c
     return s;
 }
 
-std::optional<render::CameraSpec> lower_camera(const Stmt& stmt, BlockContext& ctx) {
+std::optional<render::CameraSpec> lower_camera(const ObjectStmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table("camera"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     r.require("position");
     r.require("look_at");
@@ -303,15 +303,15 @@ std::optional<render::CameraSpec> lower_camera(const Stmt& stmt, BlockContext& c
     return c;
 }
 
-std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx) {
+std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContext& ctx) {
     render::LightSpec l;
     if (stmt.name == "area") {
         l.kind = render::LightKind::Area;
     } else if (stmt.name != "point") {
         Span at = stmt.name.empty() ? stmt.keyword : stmt.name_span;
-        Diagnostic& d =
-            ctx.diags.error(at, stmt.name.empty() ? std::string("light needs a kind: point or area")
-                                                  : "unknown light kind '" + stmt.name + "' (point or area)");
+        Diagnostic& d = ctx.diags.error(
+            at, stmt.name.empty() ? std::string("light needs a kind: point or area")
+                                  : "unknown light kind '" + std::string(stmt.name) + "' (point or area)");
         std::string match = closest_match(stmt.name, {"point", "area"});
         if (!stmt.name.empty() && !match.empty()) d.help.push_back("did you mean '" + match + "'?");
         return std::nullopt;
@@ -354,7 +354,7 @@ std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx
     return l;
 }
 
-std::optional<LoweredObject> lower_object(const Stmt& stmt, BlockContext& ctx) {
+std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx) {
     const char* what = "sphere";
     switch (stmt.block_kind) {
         case BlockKind::Sphere:

@@ -56,12 +56,12 @@ struct LoweredObject {
     SpanRecord record;
 };
 
-std::optional<render::Settings> lower_settings(const Stmt& stmt, BlockContext& ctx);
-std::optional<render::CameraSpec> lower_camera(const Stmt& stmt, BlockContext& ctx);
-std::optional<render::LightSpec> lower_light(const Stmt& stmt, BlockContext& ctx);
-std::optional<LoweredObject> lower_object(const Stmt& stmt, BlockContext& ctx);
+std::optional<render::Settings> lower_settings(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<render::CameraSpec> lower_camera(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx);
 // ExprKind::Material / Image, Checker, Perlin; null after reporting an error.
-MaterialPtr lower_material(const Expr& expr, BlockContext& ctx);
+MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx);
 TexturePtr lower_texture(const Expr& expr, BlockContext& ctx);
 
 // Mesh geometry from `file` or `vertices`/`faces`/`uvs`/`normals` (lower_mesh.cpp).

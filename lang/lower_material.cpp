@@ -11,7 +11,7 @@ namespace {
 
 // The head of a block expression: from its first token to the end of its '{' (or the keyword
 // alone), so that messages underline `material {` rather than the whole block.
-Span head_span(const Expr& expr) {
+Span head_span(const BlockExpr& expr) {
     Span s = expr.span;
     if (expr.block && expr.block->open.end > s.begin && expr.block->open.end <= s.end &&
         expr.block->open.file == s.file)
@@ -35,9 +35,8 @@ void read_colors(const BlockReader& r, render::TextureSpec& spec) {
     }
 }
 
-TexturePtr lower_image(const Expr& expr, BlockContext& ctx) {
-    if (expr.args.empty()) return nullptr;
-    const Expr& path_expr = *expr.args[0];
+TexturePtr lower_image(const ImageExpr& expr, BlockContext& ctx) {
+    const Expr& path_expr = *expr.path;
     std::optional<Value> path = ctx.eval(path_expr);
     if (!path) return nullptr;
     if (!path->is(ValueType::String)) {
@@ -57,7 +56,7 @@ TexturePtr lower_image(const Expr& expr, BlockContext& ctx) {
     return t;
 }
 
-TexturePtr lower_checker(const Expr& expr, BlockContext& ctx) {
+TexturePtr lower_checker(const BlockExpr& expr, BlockContext& ctx) {
     BlockReader r(block_table("checker"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
     if (!r.ok()) return nullptr;
     auto t = std::make_shared<TextureValue>();
@@ -69,7 +68,7 @@ TexturePtr lower_checker(const Expr& expr, BlockContext& ctx) {
     return t;
 }
 
-TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
+TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
     BlockReader r(block_table("perlin"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Perlin;
@@ -100,18 +99,17 @@ TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
 TexturePtr lower_texture(const Expr& expr, BlockContext& ctx) {
     switch (expr.kind) {
         case ExprKind::Image:
-            return lower_image(expr, ctx);
+            return lower_image(expr.as<ImageExpr>(), ctx);
         case ExprKind::Checker:
-            return expr.block ? lower_checker(expr, ctx) : nullptr;
+            return lower_checker(expr.as<BlockExpr>(), ctx);
         case ExprKind::Perlin:
-            return expr.block ? lower_perlin(expr, ctx) : nullptr;
+            return lower_perlin(expr.as<BlockExpr>(), ctx);
         default:
             return nullptr;
     }
 }
 
-MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
-    if (!expr.block) return nullptr;
+MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
     BlockReader r(block_table("material"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
     auto m = std::make_shared<MaterialValue>();
     m->span = head_span(expr);

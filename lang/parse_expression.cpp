@@ -61,9 +61,27 @@ BinaryInfo binary_info(TokenKind k) {
 // v_and_expr = v_equality { "&&" v_equality } ;
 // v_equality = additive { ( "==" | "!=" ) additive } ;
 // One precedence-climbing loop for all levels: operands of an operator of precedence p are
-// parsed at p + 1, so a chain of any length uses constant stack.
-ExprPtr Parser::parse_binary(int min_precedence) {
-    ExprPtr left = parse_unary();
+// parsed at p + 1, so a chain of any length uses constant stack. Operators of one level in a row
+// (`a + b - c + ...`) make one flat Binary node, not a left-deep tree: a generated 100,000-term
+// sum is one node with 100,000 operands, which every later pass walks with a loop.
+Expr* Parser::parse_binary(int min_precedence) {
+    Expr* left = parse_unary();
+    // The chain this loop is building: levels only fall along one loop (higher ones were taken
+    // by the recursive call), so an operator of another level starts a new chain with the
+    // previous one as its first operand.
+    int chain_precedence = 0;
+    std::vector<Expr*> operands;
+    std::vector<BinaryLink> ops;
+    auto finish_chain = [&] {
+        if (chain_precedence == 0) return;
+        auto* chain = expr<BinaryExpr>(ExprKind::Binary,
+                                       {file_, operands.front()->span.begin, operands.back()->span.end});
+        chain->operands = keep(operands);
+        chain->ops = keep(ops);
+        operands.clear();
+        ops.clear();
+        left = chain;
+    };
     for (;;) {
         const BinaryInfo info = binary_info(tok_.kind);
         if (info.precedence == 0 || info.precedence < min_precedence) break;
@@ -76,29 +94,32 @@ ExprPtr Parser::parse_binary(int min_precedence) {
         }
         const Token op = tok_;
         advance();
-        ExprPtr right = parse_binary(info.precedence + 1);
-        ExprPtr e = make(ExprKind::Binary, {file_, left->span.begin, right->span.end});
-        e->binary_op = info.op;
-        e->op_span = span_of(op);
-        e->args.push_back(std::move(left));
-        e->args.push_back(std::move(right));
-        left = std::move(e);
+        Expr* right = parse_binary(info.precedence + 1);
+        if (chain_precedence != info.precedence) {
+            finish_chain();
+            operands.push_back(left);
+            chain_precedence = info.precedence;
+        }
+        ops.push_back({info.op, span_of(op)});
+        operands.push_back(right);
     }
+    finish_chain();
     return left;
 }
 
 // unary = ( "-" | "!" ) unary | postfix ;
-ExprPtr Parser::parse_unary() {
+Expr* Parser::parse_unary() {
     const Token op = tok_;
     if (!enter(op)) return bad_here();
-    ExprPtr result;
+    Expr* result;
     if (check(TokenKind::Minus) || check(TokenKind::Bang)) {
         advance();
-        ExprPtr operand = parse_unary();
-        result = make(ExprKind::Unary, {file_, op.begin, operand->span.end});
-        result->unary_op = op.kind == TokenKind::Minus ? UnaryOp::Neg : UnaryOp::Not;
-        result->op_span = span_of(op);
-        result->args.push_back(std::move(operand));
+        Expr* operand = parse_unary();
+        auto* u = expr<UnaryExpr>(ExprKind::Unary, {file_, op.begin, operand->span.end});
+        u->op = op.kind == TokenKind::Minus ? UnaryOp::Neg : UnaryOp::Not;
+        u->op_span = span_of(op);
+        u->operand = operand;
+        result = u;
     } else {
         result = parse_postfix();
     }
@@ -107,75 +128,82 @@ ExprPtr Parser::parse_unary() {
 }
 
 // postfix = primary { "." IDENT | "[" expression "]" } ;
-ExprPtr Parser::parse_postfix() {
-    ExprPtr e = parse_primary();
+// Each field or index nests the tree one level deeper (its operand is inside it), so each counts
+// against the nesting limit like a parenthesis: `a[0][0]...` is nesting, not a flat chain.
+Expr* Parser::parse_postfix() {
+    Expr* e = parse_primary();
+    int levels = 0;
     while (!panic_) {
+        if ((check(TokenKind::Dot) || check(TokenKind::LBracket)) && !enter(tok_)) break;
+        ++levels;
         if (check(TokenKind::Dot)) {
             advance();
             if (!check(TokenKind::Ident)) {
                 error_here("expected a field name after '.', found " + found());
                 break;
             }
-            ExprPtr m = make(ExprKind::Member, {file_, e->span.begin, tok_.end});
-            m->text = std::string(lexeme(tok_));
-            m->op_span = span_of(tok_);
-            m->args.push_back(std::move(e));
+            auto* m = expr<MemberExpr>(ExprKind::Member, {file_, e->span.begin, tok_.end});
+            m->operand = e;
+            m->field = keep(lexeme(tok_));
+            m->field_span = span_of(tok_);
             advance();
-            e = std::move(m);
+            e = m;
         } else if (check(TokenKind::LBracket)) {
             const Token open = tok_;
             advance();
             const bool saved_vector = in_vector_;
             in_vector_ = false;
-            ExprPtr index = parse_expression();
+            Expr* index = parse_expression();
             in_vector_ = saved_vector;
             if (check(TokenKind::RBracket)) {
                 advance();
             } else {
                 unclosed(open, "expected ']' after the index, found " + found());
             }
-            ExprPtr ix = make(ExprKind::Index, span_from(e->span.begin));
-            ix->op_span = span_of(open);
-            ix->args.push_back(std::move(e));
-            ix->args.push_back(std::move(index));
-            e = std::move(ix);
+            auto* ix = expr<IndexExpr>(ExprKind::Index, span_from(e->span.begin));
+            ix->operand = e;
+            ix->index = index;
+            ix->bracket = span_of(open);
+            e = ix;
         } else {
+            --levels;
             break;
         }
     }
+    for (; levels > 0; --levels) leave();
     return e;
 }
 
 // primary = NUMBER | STRING | "true" | "false" | IDENT [ "(" [ expression { "," expression } ] ")" ]
 //         | "(" expression ")" | vector | list | "material" block | "image" expression
 //         | "checker" block | "perlin" block ;
-ExprPtr Parser::parse_primary() {
+Expr* Parser::parse_primary() {
     const Token t = tok_;
     switch (t.kind) {
         case TokenKind::Number: {
             advance();
-            ExprPtr e = make(ExprKind::Number, span_of(t));
-            e->number = t.number;
+            auto* e = expr<NumberExpr>(ExprKind::Number, span_of(t));
+            e->value = t.number;
             return e;
         }
         case TokenKind::String: {
             advance();
-            ExprPtr e = make(ExprKind::String, span_of(t));
-            e->text = decode_string(lexeme(t));
+            auto* e = expr<StringExpr>(ExprKind::String, span_of(t));
+            e->text = keep(decode_string(lexeme(t)));
             return e;
         }
         case TokenKind::True:
         case TokenKind::False: {
             advance();
-            ExprPtr e = make(ExprKind::Bool, span_of(t));
-            e->boolean = t.kind == TokenKind::True;
+            auto* e = expr<BoolExpr>(ExprKind::Bool, span_of(t));
+            e->value = t.kind == TokenKind::True;
             return e;
         }
         case TokenKind::Ident: {
             advance();
             if (check(TokenKind::LParen)) return parse_call(t);
-            ExprPtr e = make(ExprKind::Ident, span_of(t));
-            e->text = std::string(lexeme(t));
+            auto* e = expr<IdentExpr>(ExprKind::Ident, span_of(t));
+            e->name = keep(lexeme(t));
             return e;
         }
         case TokenKind::LParen:
@@ -192,9 +220,9 @@ ExprPtr Parser::parse_primary() {
             return parse_block_expr(ExprKind::Perlin, "perlin");
         case TokenKind::Image: {
             advance();
-            ExprPtr path = parse_expression();
-            ExprPtr e = make(ExprKind::Image, {file_, t.begin, path->span.end});
-            e->args.push_back(std::move(path));
+            Expr* path = parse_expression();
+            auto* e = expr<ImageExpr>(ExprKind::Image, {file_, t.begin, path->span.end});
+            e->path = path;
             return e;
         }
         default:
@@ -204,40 +232,43 @@ ExprPtr Parser::parse_primary() {
 }
 
 // IDENT "(" [ expression { "," expression } ] ")"   (the call form of primary)
-ExprPtr Parser::parse_call(const Token& name) {
-    ExprPtr e = make(ExprKind::Call, {});
-    e->text = std::string(lexeme(name));
-    e->op_span = span_of(name);
+Expr* Parser::parse_call(const Token& name) {
+    auto* e = expr<CallExpr>(ExprKind::Call, {});
+    e->name = keep(lexeme(name));
+    e->name_span = span_of(name);
     const Token open = tok_;
     advance();
     const bool saved_vector = in_vector_;
     in_vector_ = false;
+    std::vector<Expr*> args;
     if (!check(TokenKind::RParen)) {
         for (;;) {
-            e->args.push_back(parse_expression());
+            args.push_back(parse_expression());
             if (panic_) break;
             if (check(TokenKind::Comma)) {
                 advance();
                 continue;
             }
             if (!check(TokenKind::RParen))
-                unclosed(open, "expected ',' or ')' in the call to '" + e->text + "', found " + found());
+                unclosed(open, "expected ',' or ')' in the call to '" + std::string(e->name) + "', found " +
+                                   found());
             break;
         }
     }
     in_vector_ = saved_vector;
     if (check(TokenKind::RParen)) advance();
+    e->args = keep(args);
     e->span = span_from(name.begin);
     return e;
 }
 
 // "(" expression ")"   (the parenthesized form of primary; the node's span covers the parentheses)
-ExprPtr Parser::parse_group() {
+Expr* Parser::parse_group() {
     const Token open = tok_;
     advance();
     const bool saved_vector = in_vector_;
     in_vector_ = false;
-    ExprPtr e = parse_expression();
+    Expr* e = parse_expression();
     in_vector_ = saved_vector;
     if (check(TokenKind::RParen)) {
         advance();
@@ -250,17 +281,18 @@ ExprPtr Parser::parse_group() {
 
 // vector    = "<" component "," component [ "," component ] ">" ;
 // component = v_or_expr ;
-ExprPtr Parser::parse_vector() {
+Expr* Parser::parse_vector() {
     const Token open = tok_;
     advance();
-    ExprPtr e = make(ExprKind::Vector, {});
+    auto* e = expr<VectorExpr>(ExprKind::Vector, {});
+    std::vector<Expr*> components;
     const bool saved_vector = in_vector_;
     in_vector_ = true;
     for (;;) {
-        e->args.push_back(parse_expression());
+        components.push_back(parse_expression());
         if (panic_) break;
         const bool closing = check(TokenKind::Greater) || check(TokenKind::GreaterEq);
-        if (check(TokenKind::Comma) && e->args.size() < 3) {
+        if (check(TokenKind::Comma) && components.size() < 3) {
             const Token comma = tok_;
             advance();
             if (check(TokenKind::Greater) || check(TokenKind::GreaterEq)) {
@@ -272,22 +304,23 @@ ExprPtr Parser::parse_vector() {
         }
         if (closing) {
             close_vector();
-            if (e->args.size() < 2)
+            if (components.size() < 2)
                 error(span_from(open.begin), "a vector literal needs 2 or 3 components, found 1");
             break;
         }
-        if (e->args.size() == 3) {
+        if (components.size() == 3) {
             if (Diagnostic* d = error_here("expected '>' to close the vector, found " + found())) {
                 d->notes.push_back({span_of(open), "to match this '<'"});
                 d->help.push_back("a vector literal has 2 or 3 components");
             }
         } else {
-            unclosed(open, std::string(e->args.size() == 1 ? "expected ','" : "expected ',' or '>'") +
+            unclosed(open, std::string(components.size() == 1 ? "expected ','" : "expected ',' or '>'") +
                                " after a vector component, found " + found());
         }
         break;
     }
     in_vector_ = saved_vector;
+    e->components = keep(components);
     e->span = span_from(open.begin);
     return e;
 }
@@ -312,13 +345,14 @@ void Parser::close_vector() {
 }
 
 // list = "[" [ expression { "," expression } [ "," ] ] "]" ;
-ExprPtr Parser::parse_list() {
+Expr* Parser::parse_list() {
     const Token open = tok_;
     advance();
     if (check(TokenKind::Less) && !has_peek_) {
-        if (ExprPtr packed = try_packed_list(open)) return packed;
+        if (Expr* packed = try_packed_list(open)) return packed;
     }
-    ExprPtr e = make(ExprKind::List, {});
+    auto* e = expr<ListExpr>(ExprKind::List, {});
+    std::vector<Expr*> elements;
     const bool saved_vector = in_vector_;
     in_vector_ = false;
     while (!check(TokenKind::RBracket)) {
@@ -326,7 +360,7 @@ ExprPtr Parser::parse_list() {
             unclosed(open, "expected a list element or ']', found " + found());
             break;
         }
-        e->args.push_back(parse_expression());
+        elements.push_back(parse_expression());
         if (panic_) break;
         if (check(TokenKind::Comma)) {
             advance();
@@ -337,15 +371,16 @@ ExprPtr Parser::parse_list() {
     }
     in_vector_ = saved_vector;
     if (check(TokenKind::RBracket)) advance();
+    e->elements = keep(elements);
     e->span = span_from(open.begin);
     return e;
 }
 
 // The packed form of list: `[<1, 2, 3>, <-4, 5, 6>, ...]` becomes numbers plus element offsets,
-// with no Expr per element, so a million-triangle inline mesh stays small. At the first element
+// with no node per element, so a million-triangle inline mesh stays small. At the first element
 // that is not such a literal the attempt is abandoned and the list re-read from its '[' (the
 // lexer does not repeat its errors), so the result is always what the generic list would mean.
-ExprPtr Parser::try_packed_list(const Token& open) {
+Expr* Parser::try_packed_list(const Token& open) {
     const Token restart = tok_;
     const Token restart_prev = prev_;
     const uint32_t restart_pos = lexer_.position();
@@ -383,7 +418,7 @@ ExprPtr Parser::try_packed_list(const Token& open) {
         if (!check(TokenKind::RBracket)) break;
         advance();
         packed->dims = static_cast<int>(dims);
-        ExprPtr e = make(ExprKind::PackedList, span_from(open.begin));
+        auto* e = expr<PackedListExpr>(ExprKind::PackedList, span_from(open.begin));
         e->packed = std::move(packed);
         return e;
     }
@@ -395,11 +430,11 @@ ExprPtr Parser::try_packed_list(const Token& open) {
 }
 
 // "material" block | "checker" block | "perlin" block   (the block forms of primary)
-ExprPtr Parser::parse_block_expr(ExprKind kind, const char* what) {
+Expr* Parser::parse_block_expr(ExprKind kind, const char* what) {
     const Token keyword = tok_;
     advance();
-    ExprPtr e = make(kind, {});
-    e->block = std::make_unique<Block>();
+    auto* e = expr<BlockExpr>(kind, {});
+    e->block = arena_->make<Block>();
     if (check(TokenKind::LBrace)) {
         parse_block(*e->block, std::string(what) + " block", false);
     } else {

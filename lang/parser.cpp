@@ -89,6 +89,7 @@ bool Parser::recover_in_block() {
 Program Parser::parse_program() {
     Program program;
     program.file = file_;
+    arena_ = program.arena.get();
     if (text_.size() >= std::numeric_limits<uint32_t>::max()) {
         diags_.error({file_, 0, 0}, "file is too large (the limit is 4 GiB)");
         return program;
@@ -97,23 +98,23 @@ Program Parser::parse_program() {
     return program;
 }
 
-std::vector<StmtPtr> Parser::parse_statements(bool top_level) {
-    std::vector<StmtPtr> statements;
+StmtList Parser::parse_statements(bool top_level) {
+    std::vector<Stmt*> statements;
     while (!check(TokenKind::Eof)) {
         if (check(TokenKind::RBrace)) {
             if (!top_level) break;
             error_here("unexpected '}' with no open block");
             advance();
-        } else if (StmtPtr s = parse_statement()) {
-            statements.push_back(std::move(s));
+        } else {
+            statements.push_back(parse_statement());
         }
         if (panic_) synchronize(top_level);
     }
-    return statements;
+    return keep(statements);
 }
 
 // statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt ;
-StmtPtr Parser::parse_statement() {
+Stmt* Parser::parse_statement() {
     switch (tok_.kind) {
         case TokenKind::Let:
             return parse_let();
@@ -135,9 +136,7 @@ StmtPtr Parser::parse_statement() {
         default:
             break;
     }
-    auto bad = std::make_unique<Stmt>();
-    bad->kind = StmtKind::Bad;
-    bad->span = bad->keyword = span_of(tok_);
+    Stmt* bad = stmt<Stmt>(StmtKind::Bad, span_of(tok_));
     if (check(TokenKind::Else)) {
         error_here("'else' without a matching 'if'");
     } else {
@@ -165,7 +164,7 @@ StmtPtr Parser::parse_statement() {
     return bad;
 }
 
-bool Parser::parse_name(std::string& name, Span& span, const char* after) {
+bool Parser::parse_name(std::string_view& name, Span& span, const char* after) {
     // `for in xs`: the name is missing, not spelled `in`.
     const bool keyword =
         tok_.kind >= TokenKind::Let && tok_.kind <= TokenKind::False && !check(TokenKind::In);
@@ -179,7 +178,7 @@ bool Parser::parse_name(std::string& name, Span& span, const char* after) {
                 d->help.push_back("'" + word + "' is a reserved word; choose another name");
             panic_ = false;
         }
-        name = std::string(lexeme(tok_));
+        name = keep(lexeme(tok_));
         span = span_of(tok_);
         advance();
         return true;
@@ -189,17 +188,15 @@ bool Parser::parse_name(std::string& name, Span& span, const char* after) {
 }
 
 // let_stmt = "let" IDENT "=" expression ;
-StmtPtr Parser::parse_let() {
-    auto s = std::make_unique<Stmt>();
-    s->kind = StmtKind::Let;
-    s->keyword = span_of(tok_);
+Stmt* Parser::parse_let() {
+    auto* s = stmt<LetStmt>(StmtKind::Let, span_of(tok_));
     advance();
     if (parse_name(s->name, s->name_span, "let")) {
         if (check(TokenKind::Assign)) {
             advance();
-            s->value = parse_expression();
+            if (!colour_function_before_vector()) s->value = parse_expression();
         } else {
-            error_here("expected '=' after 'let " + s->name + "', found " + found());
+            error_here("expected '=' after 'let " + std::string(s->name) + "', found " + found());
         }
     }
     if (!s->value) s->value = bad_here();
@@ -208,10 +205,8 @@ StmtPtr Parser::parse_let() {
 }
 
 // for_stmt = "for" IDENT "in" expression [ ".." expression ] body ;
-StmtPtr Parser::parse_for() {
-    auto s = std::make_unique<Stmt>();
-    s->kind = StmtKind::For;
-    s->keyword = span_of(tok_);
+Stmt* Parser::parse_for() {
+    auto* s = stmt<ForStmt>(StmtKind::For, span_of(tok_));
     advance();
     if (parse_name(s->name, s->name_span, "for")) {
         if (check(TokenKind::In)) {
@@ -223,7 +218,7 @@ StmtPtr Parser::parse_for() {
             }
             if (!panic_) s->body = parse_body("for body");
         } else {
-            error_here("expected 'in' after 'for " + s->name + "', found " + found());
+            error_here("expected 'in' after 'for " + std::string(s->name) + "', found " + found());
         }
     }
     if (!s->value) s->value = bad_here();
@@ -232,44 +227,40 @@ StmtPtr Parser::parse_for() {
 }
 
 // if_stmt = "if" expression body { "else" "if" expression body } [ "else" body ] ;
-StmtPtr Parser::parse_if() {
-    auto s = std::make_unique<Stmt>();
-    s->kind = StmtKind::If;
-    s->keyword = span_of(tok_);
-    IfBranch first;
-    first.keyword = s->keyword;
+Stmt* Parser::parse_if() {
+    auto* s = stmt<IfStmt>(StmtKind::If, span_of(tok_));
+    std::vector<IfBranch> branches;
+    IfBranch first{nullptr, {}, s->keyword};
     advance();
     first.condition = parse_expression();
     if (!panic_) first.body = parse_body("if body");
-    s->branches.push_back(std::move(first));
+    branches.push_back(first);
     while (!panic_ && check(TokenKind::Else)) {
-        IfBranch branch;
-        branch.keyword = span_of(tok_);
+        IfBranch branch{nullptr, {}, span_of(tok_)};
         advance();
         if (check(TokenKind::If)) {
             advance();
             branch.condition = parse_expression();
             if (!panic_) branch.body = parse_body("if body");
-            s->branches.push_back(std::move(branch));
+            branches.push_back(branch);
         } else {
             branch.body = parse_body("else body");
-            s->branches.push_back(std::move(branch));
+            branches.push_back(branch);
             break;
         }
     }
+    s->branches = keep(branches);
     s->span = span_from(s->keyword.begin);
     return s;
 }
 
 // include_stmt = "include" STRING ;
-StmtPtr Parser::parse_include() {
-    auto s = std::make_unique<Stmt>();
-    s->kind = StmtKind::Include;
-    s->keyword = span_of(tok_);
+Stmt* Parser::parse_include() {
+    auto* s = stmt<IncludeStmt>(StmtKind::Include, span_of(tok_));
     advance();
     if (check(TokenKind::String)) {
-        s->name = decode_string(lexeme(tok_));
-        s->name_span = span_of(tok_);
+        s->path = keep(decode_string(lexeme(tok_)));
+        s->path_span = span_of(tok_);
         advance();
     } else {
         error_here("expected a file name string after 'include', found " + found());
@@ -279,16 +270,15 @@ StmtPtr Parser::parse_include() {
 }
 
 // body = "{" { statement } "}" ;
-std::vector<StmtPtr> Parser::parse_body(const char* what) {
-    std::vector<StmtPtr> statements;
+StmtList Parser::parse_body(const char* what) {
     if (!check(TokenKind::LBrace)) {
         error_here("expected '{' to start the " + std::string(what) + ", found " + found());
-        return statements;
+        return {};
     }
     const Token open = tok_;
-    if (!enter(open)) return statements;
+    if (!enter(open)) return {};
     advance();
-    statements = parse_statements(false);
+    const StmtList statements = parse_statements(false);
     if (check(TokenKind::RBrace)) {
         advance();
     } else {
@@ -298,44 +288,42 @@ std::vector<StmtPtr> Parser::parse_body(const char* what) {
     return statements;
 }
 
-// object_stmt    = object_keyword block | "light" IDENT block | "triangle" triangle_block ;
-// object_keyword = "settings" | "camera" | "sphere" | "box" | "plane" | "mesh" ;
-StmtPtr Parser::parse_object() {
-    auto s = std::make_unique<Stmt>();
-    s->kind = StmtKind::Block;
-    s->keyword = span_of(tok_);
-    const TokenKind kind = tok_.kind;
-    const std::string word(lexeme(tok_));
+namespace {
+
+BlockKind block_kind(TokenKind kind) {
     switch (kind) {
         case TokenKind::Settings:
-            s->block_kind = BlockKind::Settings;
-            break;
+            return BlockKind::Settings;
         case TokenKind::Camera:
-            s->block_kind = BlockKind::Camera;
-            break;
+            return BlockKind::Camera;
         case TokenKind::Light:
-            s->block_kind = BlockKind::Light;
-            break;
+            return BlockKind::Light;
         case TokenKind::Sphere:
-            s->block_kind = BlockKind::Sphere;
-            break;
+            return BlockKind::Sphere;
         case TokenKind::Box:
-            s->block_kind = BlockKind::Box;
-            break;
+            return BlockKind::Box;
         case TokenKind::Triangle:
-            s->block_kind = BlockKind::Triangle;
-            break;
+            return BlockKind::Triangle;
         case TokenKind::Plane:
-            s->block_kind = BlockKind::Plane;
-            break;
+            return BlockKind::Plane;
         default:
-            s->block_kind = BlockKind::Mesh;
-            break;
+            return BlockKind::Mesh;
     }
+}
+
+}  // namespace
+
+// object_stmt    = object_keyword block | "light" IDENT block | "triangle" triangle_block ;
+// object_keyword = "settings" | "camera" | "sphere" | "box" | "plane" | "mesh" ;
+Stmt* Parser::parse_object() {
+    auto* s = stmt<ObjectStmt>(StmtKind::Object, span_of(tok_));
+    const TokenKind kind = tok_.kind;
+    const std::string word(lexeme(tok_));
+    s->block_kind = block_kind(kind);
     advance();
     if (kind == TokenKind::Light) {
         if (check(TokenKind::Ident)) {
-            s->name = std::string(lexeme(tok_));
+            s->name = keep(lexeme(tok_));
             s->name_span = span_of(tok_);
             advance();
         } else {
@@ -350,9 +338,10 @@ StmtPtr Parser::parse_object() {
             // is parsed normally, with its own errors.
             if (parse_block(s->block, word + " block", kind == TokenKind::Triangle)) panic_ = false;
         } else {
-            error_here("expected '{' after '" +
-                       (kind == TokenKind::Light && !s->name.empty() ? "light " + s->name : word) +
-                       "', found " + found());
+            error_here(
+                "expected '{' after '" +
+                (kind == TokenKind::Light && !s->name.empty() ? "light " + std::string(s->name) : word) +
+                "', found " + found());
         }
     }
     s->span = span_from(s->keyword.begin);
@@ -370,10 +359,12 @@ bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
     advance();
     const bool saved_vector = in_vector_;
     in_vector_ = false;
+    std::vector<Item> items;
     if (triangle && starts_vertex_list()) {
-        Item& vertices = block.items.emplace_back();
-        vertices.name_span = {file_, tok_.begin, tok_.begin};
-        parse_value_list(vertices.values, "");
+        const Span at{file_, tok_.begin, tok_.begin};
+        Item vertices{{}, at, {}};
+        vertices.values = parse_value_list(vertices);
+        items.push_back(vertices);
     }
     for (;;) {
         if (panic_) {
@@ -393,16 +384,16 @@ bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
             break;
         }
         if (check(TokenKind::Ident) || check(TokenKind::Material)) {
-            parse_item(block);
+            items.push_back(parse_item());
         } else {
             error_here("expected a property name or '}' in " + what + ", found " + found());
         }
     }
+    block.items = keep(items);
     in_vector_ = saved_vector;
     leave();
     return closed;
 }
-
 // The lookahead rule of triangle_block (see the grammar): does the block start with vertices?
 bool Parser::starts_vertex_list() {
     if (!starts_expression(tok_.kind)) return false;
@@ -429,39 +420,78 @@ bool Parser::starts_vertex_list() {
 
 // item          = "material" block | property_name value_list ;
 // property_name = IDENT | "material" ;
-void Parser::parse_item(Block& block) {
-    Item& item = block.items.emplace_back();
-    item.name = std::string(lexeme(tok_));
-    item.name_span = span_of(tok_);
+Item Parser::parse_item() {
+    Item item{keep(lexeme(tok_)), span_of(tok_), {}};
     const bool material = check(TokenKind::Material);
     advance();
     if (material && check(TokenKind::LBrace)) {
         const uint32_t begin = tok_.begin;
-        ExprPtr e = make(ExprKind::Material, {});
-        e->block = std::make_unique<Block>();
+        auto* e = expr<BlockExpr>(ExprKind::Material, {});
+        e->block = arena_->make<Block>();
         parse_block(*e->block, "material block", false);
         e->span = span_from(begin);
-        item.values.push_back(std::move(e));
-        return;
+        item.values = keep(std::vector<Expr*>{e});
+        return item;
     }
-    parse_value_list(item.values, item.name);
+    item.values = parse_value_list(item);
+    return item;
 }
 
 // value_list = expression { "," expression } ;
-void Parser::parse_value_list(std::vector<ExprPtr>& values, const std::string& item) {
+// A list ends at the first token that cannot continue an expression, so two slips read
+// wrongly as values get messages of their own, at the word that caused them: POV-Ray's
+// `color rgb <1, 0, 0>` (a function name before a vector, which parses as `rgb < 1`, ...) and a
+// property with no value, `center radius 1` (where `radius` becomes the centre's value).
+ExprList Parser::parse_value_list(const Item& item) {
     if (!starts_expression(tok_.kind)) {
-        if (item.empty())
+        if (item.name.empty())
             error_here("expected a value, found " + found());
         else
-            error_here("expected a value for '" + item + "', found " + found());
-        values.push_back(bad_here());
-        return;
+            error_here("expected a value for '" + std::string(item.name) + "', found " + found());
+        return keep(std::vector<Expr*>{bad_here()});
     }
-    values.push_back(parse_expression());
+    if (colour_function_before_vector()) return keep(std::vector<Expr*>{bad_here()});
+    std::vector<Expr*> values{parse_expression()};
     while (!panic_ && check(TokenKind::Comma)) {
         advance();
         values.push_back(parse_expression());
     }
+    const bool literal_follows = check(TokenKind::Number) || check(TokenKind::String) ||
+                                 check(TokenKind::True) || check(TokenKind::False);
+    if (!panic_ && !item.name.empty() && values.size() == 1 && values[0]->kind == ExprKind::Ident &&
+        literal_follows) {
+        const std::string word(values[0]->as<IdentExpr>().name);
+        if (Diagnostic* d = error(item.name_span, "'" + std::string(item.name) + "' has no value"))
+            d->help.push_back("'" + word + "' is read as its value, and " + found() +
+                              " is left over; write a value after '" + std::string(item.name) + "'");
+    }
+    return keep(values);
+}
+
+// `rgb <1, 0, 0>` or `srgb <...>` as an item's or a let's value: the colour functions written as
+// POV-Ray's colour keywords. Reported at the name (true) when a vector literal follows on the same line.
+bool Parser::colour_function_before_vector() {
+    if (!check(TokenKind::Ident)) return false;
+    const std::string_view name = lexeme(tok_);
+    if ((name != "rgb" && name != "srgb") || peek().kind != TokenKind::Less) return false;
+    // The raw text up to the closing '>' on the same line: components made of numbers, names,
+    // arithmetic and parentheses, and at least one comma.
+    size_t p = peek().end, commas = 0;
+    const std::string_view component_chars =
+        " \t.+-*/()_0123456789abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ";
+    for (; p < text_.size() && text_[p] != '>'; ++p) {
+        if (text_[p] == ',')
+            ++commas;
+        else if (component_chars.find(text_[p]) == std::string_view::npos)
+            return false;
+    }
+    if (p == text_.size() || commas == 0) return false;
+    const std::string vector(text_.substr(peek().begin, p + 1 - peek().begin));
+    const std::string example = name == "rgb" ? "rgb(255, 0, 0)" : "srgb(1, 0, 0)";
+    if (Diagnostic* d = error_here("'" + std::string(name) + "' is a function, not a colour keyword"))
+        d->help.push_back("call it with parentheses, " + example +
+                          ", or write the colour as a vector: " + vector);
+    return true;
 }
 
 }  // namespace detail

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lang/lexer.h"
@@ -78,43 +79,60 @@ private:
     bool recover_in_block();
 
     // ---- statements ----
-    std::vector<StmtPtr> parse_statements(bool top_level);
-    StmtPtr parse_statement();
-    StmtPtr parse_let();
-    StmtPtr parse_for();
-    StmtPtr parse_if();
-    StmtPtr parse_include();
-    StmtPtr parse_object();
-    std::vector<StmtPtr> parse_body(const char* what);
-    bool parse_name(std::string& name, Span& span, const char* after);
+    StmtList parse_statements(bool top_level);
+    Stmt* parse_statement();
+    Stmt* parse_let();
+    Stmt* parse_for();
+    Stmt* parse_if();
+    Stmt* parse_include();
+    Stmt* parse_object();
+    StmtList parse_body(const char* what);
+    bool parse_name(std::string_view& name, Span& span, const char* after);
 
     // ---- blocks ----
     bool parse_block(Block& block, const std::string& what, bool triangle);  // true: '}' consumed
     bool starts_vertex_list();
-    void parse_item(Block& block);
-    void parse_value_list(std::vector<ExprPtr>& values, const std::string& item);
+    Item parse_item();
+    ExprList parse_value_list(const Item& item);
+    bool colour_function_before_vector();
 
     // ---- expressions ----
-    ExprPtr parse_expression() { return parse_binary(1); }
-    ExprPtr parse_binary(int min_precedence);
-    ExprPtr parse_unary();
-    ExprPtr parse_postfix();
-    ExprPtr parse_primary();
-    ExprPtr parse_call(const Token& name);
-    ExprPtr parse_group();
-    ExprPtr parse_vector();
-    ExprPtr parse_list();
-    ExprPtr try_packed_list(const Token& open);
-    ExprPtr parse_block_expr(ExprKind kind, const char* what);
+    Expr* parse_expression() { return parse_binary(1); }
+    Expr* parse_binary(int min_precedence);
+    Expr* parse_unary();
+    Expr* parse_postfix();
+    Expr* parse_primary();
+    Expr* parse_call(const Token& name);
+    Expr* parse_group();
+    Expr* parse_vector();
+    Expr* parse_list();
+    Expr* try_packed_list(const Token& open);
+    Expr* parse_block_expr(ExprKind kind, const char* what);
     void close_vector();
-    ExprPtr make(ExprKind kind, Span span) {
-        auto e = std::make_unique<Expr>();
+
+    // ---- nodes (in the program's arena) ----
+    template <class T>
+    T* expr(ExprKind kind, Span span) {
+        T* e = arena_->make<T>();
         e->kind = kind;
         e->span = span;
         return e;
     }
-    ExprPtr bad_here() { return make(ExprKind::Bad, {file_, tok_.begin, tok_.begin}); }
+    template <class T>
+    T* stmt(StmtKind kind, Span keyword) {
+        T* s = arena_->make<T>();
+        s->kind = kind;
+        s->span = s->keyword = keyword;
+        return s;
+    }
+    Expr* bad_here() { return expr<Expr>(ExprKind::Bad, {file_, tok_.begin, tok_.begin}); }
+    template <class T>
+    std::span<const T> keep(const std::vector<T>& items) {
+        return arena_->copy(items);
+    }
+    std::string_view keep(std::string_view text) { return arena_->copy(text); }
 
+    Arena* arena_ = nullptr;  // the program's, set by parse_program
     uint32_t file_;
     std::string_view text_;
     Diagnostics& diags_;

@@ -177,7 +177,7 @@ void BlockReader::read_item(const Item& item) {
         return;
     }
     bool valid = true;
-    for (const ExprPtr& e : item.values) {
+    for (const Expr* e : item.values) {
         std::optional<Value> v = read_value(*p, *e);
         if (!v) {
             valid = false;
@@ -211,18 +211,19 @@ bool BlockReader::check_count(const Property& p, const Item& item) {
 std::optional<Value> BlockReader::read_value(const Property& p, const Expr& expr) {
     if (p.type == PropType::Word) {
         // Enumerated values are bare words: read the identifier's name, never evaluate it.
+        const std::string_view word = expr.kind == ExprKind::Ident ? expr.as<IdentExpr>().name : "";
         if (expr.kind != ExprKind::Ident ||
-            std::find(p.words.begin(), p.words.end(), expr.text) == p.words.end()) {
+            std::find(p.words.begin(), p.words.end(), word) == p.words.end()) {
             Diagnostic& d =
                 diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words));
             if (expr.kind == ExprKind::Ident) {
                 std::vector<std::string> candidates(p.words.begin(), p.words.end());
-                std::string match = closest_match(expr.text, candidates);
+                std::string match = closest_match(word, candidates);
                 if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
             }
             return std::nullopt;
         }
-        return Value::make_string(expr.text, expr.span);
+        return Value::make_string(std::string(word), expr.span);
     }
     std::optional<Value> v = eval_(expr);
     if (!v) return std::nullopt;

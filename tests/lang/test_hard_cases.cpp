@@ -609,3 +609,72 @@ TEST_CASE("R55: a large OBJ mesh loads completely", "[hard-cases][R55][large]") 
 // runs it under ASan+UBSan for a bounded time (WSD_FUZZ_SECONDS, default 60 s), seeded with every
 // scene under tests/golden and examples/. A finding is added here or in tests/golden as a
 // regression case.
+
+namespace {
+
+// `first OP term OP term ...` with `terms` terms in all.
+std::string chain(const std::string& first, const std::string& op_term, size_t terms) {
+    return first + repeat(op_term, terms - 1);
+}
+
+size_t count_of(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("a flat chain of 150,000 terms checks, loads and prints", "[hard-cases][chain][large]") {
+    // Generated scenes write such lines; a chain of one operator level is one node, walked with
+    // loops, so its length costs no stack in any pass.
+    const size_t terms = 150'000;
+    const struct {
+        std::string text;
+        double value;  // or -1: a bool, true
+    } chains[] = {
+        {chain("1", "+1", terms), 150'000},       {chain("1", "*1", terms), 1},
+        {chain("2", "-1", terms), 2 - 149'999.0}, {chain("1", "+1-1", terms / 2), 1},
+        {chain("true", "&&true", terms), -1},     {chain("false", "||false", terms - 1) + "||true", -1},
+    };
+    for (const auto& c : chains) {
+        INFO(c.text.substr(0, 20));
+        const auto e = evaluate_text("let x = " + c.text + "\n");
+        CHECK(e->errors().empty());
+        const std::optional<Value> v = e->get("x");
+        REQUIRE(v);
+        if (c.value == -1)
+            CHECK(v->boolean());
+        else
+            CHECK(v->number() == c.value);
+        // The whole front end, as `wsd check` runs it, with the value used by an object.
+        const std::string use = c.value == -1 ? "sphere { center <0, 0, 0>  radius 1  material { } }\n"
+                                              : "sphere { center <0, 0, x * 0>  radius 1  material { } }\n";
+        for (const bool build : {true, false}) {  // `wsd check`, and the load without building
+            const Outcome out = load(camera + "let x = " + c.text + "\n" + use, "r54.wsd", build);
+            CHECK(out.errors.empty());
+            CHECK(out.loaded);
+        }
+    }
+    // The AST dump prints the chain flat: one operand and one operator a line.
+    SourceManager sources;
+    Diagnostics diags;
+    const uint32_t file = sources.add("chain.wsd", "let x = " + chain("1", " + 1", terms) + "\n");
+    const std::string ast = print_ast(parse(file, sources, diags), sources);
+    CHECK_FALSE(diags.has_errors());
+    CHECK(ast.rfind("(let x @1:1\n  (chain @1:9\n    (number 1 @1:9)\n    (op + @1:11)\n", 0) == 0);
+    CHECK(count_of(ast, "(op + ") == terms - 1);
+    CHECK(count_of(ast, "(number 1 ") == terms);
+}
+
+TEST_CASE("a flat sum of 1,000,000 terms evaluates", "[hard-cases][chain][large]") {
+    if (sanitized()) {
+        WARN("skipped: WSD_SANITIZED=1");
+        return;
+    }
+    const auto e = evaluate_text("let x = " + chain("1", "+1", 1'000'000) + "\n");
+    CHECK(e->errors().empty());
+    const std::optional<Value> v = e->get("x");
+    REQUIRE(v);
+    CHECK(v->number() == 1'000'000);
+}

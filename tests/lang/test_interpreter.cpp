@@ -103,6 +103,61 @@ TEST_CASE("operators follow the precedence table", "[interpreter]") {
     CHECK(boolean("2 >= 2 && 2 <= 2 && !(2 > 2)"));
 }
 
+TEST_CASE("a chain of one level evaluates left to right", "[interpreter][chain]") {
+    CHECK(num("1 + 2 + 3 + 4 + 5") == 15);
+    CHECK(num("10 - 1 - 2 - 3") == 4);
+    CHECK(num("10 - 1 + 2 - 3 + 4") == 12);
+    CHECK(num("2 * 3 * 4 * 5") == 120);
+    CHECK(num("100 / 2 / 5 * 3 % 7") == 2);
+    CHECK(num("1 + 2 * 3 * 2 - 4 / 2 / 2 + 1") == 13);
+    CHECK(num("(1 + 2 + 3) * (4 - 2 - 1)") == 6);
+    CHECK(num("1e308 - 1e308 + 1e308") == 1e308);  // (1e308 - 1e308) + 1e308: no overflow
+    CHECK(vec3("<1, 1, 1> + <1, 2, 3> - <0, 1, 0> * 2 + <1, 0, 0>") == glm::dvec3(3, 1, 4));
+    CHECK(value_of("\"a\" + \"b\" + \"c\"")->string() == "abc");
+    CHECK(boolean("true && true && true && 1 < 2"));
+    CHECK_FALSE(boolean("true && true && false && true"));
+    CHECK(boolean("false || false || false || true"));
+    CHECK_FALSE(boolean("false || false || false"));
+    CHECK(boolean("1 < 2 == true != false"));
+    CHECK(boolean("false || true && false || true"));
+}
+
+TEST_CASE("a chain's errors point where the left-deep tree's did", "[interpreter][chain][errors]") {
+    // `a + b + c` means `(a + b) + c`: a failing `a + b` is reported at its own operator, and the
+    // operands after it are still evaluated (their errors reported) but not combined.
+    CHECK(errors_of("1 + \"a\" + 2") ==
+          std::vector<std::string>{"1:11: operator '+' cannot combine number and string"});
+    CHECK(errors_of("1 + 1 + 1 / 0 + \"a\"") == std::vector<std::string>{"1:19: division by zero"});
+    CHECK(errors_of("1 / 0 + 2 / 0 + 3") ==
+          std::vector<std::string>{"1:11: division by zero", "1:19: division by zero"});
+    CHECK(errors_of("1 + 2 + \"a\" - 3") ==
+          std::vector<std::string>{"1:15: operator '+' cannot combine number and string"});
+    CHECK(errors_of("\"a\" + \"b\" - 1") ==
+          std::vector<std::string>{"1:19: operator '-' cannot combine string and number"});
+    CHECK(errors_of("1e308 + 1e308 - 1e308") ==
+          std::vector<std::string>{"1:15: result of '+' is not a finite number"});
+    // Short-circuit from the left: nothing after the deciding operand runs.
+    CHECK(errors_of("false && 1 / 0 == 1 && 1 / 0 == 1").empty());
+    CHECK(errors_of("true || undefined || undefined").empty());
+    CHECK(errors_of("true && true && 1") ==
+          std::vector<std::string>{"1:22: '&&' needs bools, found number on the right"});
+    CHECK(errors_of("1 && true && true") ==
+          std::vector<std::string>{"1:11: '&&' needs bools, found number on the left"});
+    CHECK(errors_of("false || false || 2 || true") ==
+          std::vector<std::string>{"1:24: '||' needs bools, found number on the right"});
+    CHECK(errors_of("1 < 2 < 3") ==
+          std::vector<std::string>{"1:15: '<' compares numbers, found bool and number"});
+}
+
+TEST_CASE("a flat 601-term sum is not nesting", "[interpreter][chain][limits]") {
+    std::string sum = "1";
+    for (int i = 1; i < 601; ++i) sum += " + 1";
+    CHECK(num(sum) == 601);
+    std::string product = "1";
+    for (int i = 1; i < 5000; ++i) product += " * 1";
+    CHECK(num(product) == 1);
+}
+
 TEST_CASE("% is fmod and keeps the sign of the dividend", "[interpreter]") {
     CHECK(num("7 % 3") == 1);
     CHECK(num("-7 % 3") == -1);
@@ -151,8 +206,9 @@ TEST_CASE("lists index from 0 and count with len", "[interpreter]") {
 TEST_CASE("a packed list shares the parser's storage", "[interpreter]") {
     auto e = evaluate_text("let v = [<1, 2, 3>, <4, 5, 6>, <7, 8, 9>]\nlet w = v\nlet p = v[2]\n");
     REQUIRE(e->errors().empty());
-    const Expr& literal = *e->program.statements[0]->value;
-    REQUIRE(literal.kind == ExprKind::PackedList);
+    const Expr& value = *e->program.statements[0]->as<LetStmt>().value;
+    REQUIRE(value.kind == ExprKind::PackedList);
+    const auto& literal = value.as<PackedListExpr>();
     auto v = e->get("v");
     auto w = e->get("w");
     REQUIRE(v);
@@ -389,17 +445,19 @@ TEST_CASE("the evaluator survives a 10,000-deep expression tree", "[interpreter]
     // Built by hand: the parser would refuse it, but the evaluator must not rely on that.
     SourceManager sources;
     const uint32_t file = sources.add("deep.wsd", std::string(20000, ' '));
-    ExprPtr e = std::make_unique<Expr>();
-    e->kind = ExprKind::Number;
-    e->number = 1;
+    Arena arena;
+    auto* one = arena.make<NumberExpr>();
+    one->kind = ExprKind::Number;
+    one->value = 1;
+    Expr* e = one;
     for (int i = 0; i < 10000; ++i) {
-        auto u = std::make_unique<Expr>();
+        auto* u = arena.make<UnaryExpr>();
         u->kind = ExprKind::Unary;
-        u->unary_op = UnaryOp::Neg;
+        u->op = UnaryOp::Neg;
         u->span = Span{file, static_cast<uint32_t>(i), static_cast<uint32_t>(i + 1)};
         u->op_span = u->span;
-        u->args.push_back(std::move(e));
-        e = std::move(u);
+        u->operand = e;
+        e = u;
     }
     Diagnostics diags;
     SceneBuilder builder(file);
@@ -407,11 +465,6 @@ TEST_CASE("the evaluator survives a 10,000-deep expression tree", "[interpreter]
     CHECK_FALSE(interpreter.evaluate(*e));
     REQUIRE(diags.error_count() == 1);
     CHECK(diags.all()[0].message.rfind("nesting too deep", 0) == 0);
-    // Tear the chain down iteratively so the test itself does not recurse 10,000 deep.
-    while (e && !e->args.empty()) {
-        ExprPtr next = std::move(e->args[0]);
-        e = std::move(next);
-    }
 }
 
 TEST_CASE("a 100,000-sphere loop evaluates", "[interpreter][scale]") {

@@ -44,72 +44,92 @@ const char* op_name(BinaryOp op) {
 }
 
 // Compact shape of an expression, without positions: (+ 1 (* 2 3)).
+std::string shape(const Expr& e);
+
+std::string shape_of(const char* head, ExprList items, const Block* block = nullptr) {
+    std::string s = std::string("(") + head;
+    for (const Expr* a : items) s += " " + shape(*a);
+    if (block) s += " {" + std::to_string(block->items.size()) + " items}";
+    return s + ")";
+}
+
 std::string shape(const Expr& e) {
     std::ostringstream s;
     switch (e.kind) {
         case ExprKind::Number:
-            s << e.number;
+            s << e.as<NumberExpr>().value;
             break;
         case ExprKind::String:
-            s << '"' << e.text << '"';
+            s << '"' << e.as<StringExpr>().text << '"';
             break;
         case ExprKind::Bool:
-            s << (e.boolean ? "true" : "false");
+            s << (e.as<BoolExpr>().value ? "true" : "false");
             break;
         case ExprKind::Ident:
-            s << e.text;
+            s << e.as<IdentExpr>().name;
             break;
         case ExprKind::Bad:
             s << "BAD";
             break;
-        case ExprKind::PackedList:
-            s << "(packed " << e.packed->dims << "x" << e.packed->size() << ")";
+        case ExprKind::PackedList: {
+            const PackedVectors& packed = *e.as<PackedListExpr>().packed;
+            s << "(packed " << packed.dims << "x" << packed.size() << ")";
             break;
-        default: {
-            s << '(';
-            switch (e.kind) {
-                case ExprKind::Vector:
-                    s << "vec";
-                    break;
-                case ExprKind::List:
-                    s << "list";
-                    break;
-                case ExprKind::Unary:
-                    s << (e.unary_op == UnaryOp::Neg ? "neg" : "not");
-                    break;
-                case ExprKind::Binary:
-                    s << op_name(e.binary_op);
-                    break;
-                case ExprKind::Call:
-                    s << "call " << e.text;
-                    break;
-                case ExprKind::Member:
-                    s << "." << e.text;
-                    break;
-                case ExprKind::Index:
-                    s << "index";
-                    break;
-                case ExprKind::Material:
-                    s << "material";
-                    break;
-                case ExprKind::Image:
-                    s << "image";
-                    break;
-                case ExprKind::Checker:
-                    s << "checker";
-                    break;
-                case ExprKind::Perlin:
-                    s << "perlin";
-                    break;
-                default:
-                    break;
-            }
-            for (const ExprPtr& a : e.args) s << ' ' << shape(*a);
-            if (e.block) s << " {" << e.block->items.size() << " items}";
-            s << ')';
         }
+        case ExprKind::Binary: {
+            // A flat chain shown as the left-deep tree it means: a - b + c is (+ (- a b) c).
+            const auto& chain = e.as<BinaryExpr>();
+            std::string acc = shape(*chain.operands[0]);
+            for (size_t i = 1; i < chain.operands.size(); ++i)
+                acc = std::string("(") + op_name(chain.ops[i - 1].op) + " " + acc + " " +
+                      shape(*chain.operands[i]) + ")";
+            s << acc;
+            break;
+        }
+        case ExprKind::Vector:
+            s << shape_of("vec", e.as<VectorExpr>().components);
+            break;
+        case ExprKind::List:
+            s << shape_of("list", e.as<ListExpr>().elements);
+            break;
+        case ExprKind::Unary: {
+            const auto& u = e.as<UnaryExpr>();
+            s << (u.op == UnaryOp::Neg ? "(neg " : "(not ") << shape(*u.operand) << ")";
+            break;
+        }
+        case ExprKind::Call: {
+            const auto& call = e.as<CallExpr>();
+            s << shape_of(("call " + std::string(call.name)).c_str(), call.args);
+            break;
+        }
+        case ExprKind::Member: {
+            const auto& m = e.as<MemberExpr>();
+            s << "(." << m.field << " " << shape(*m.operand) << ")";
+            break;
+        }
+        case ExprKind::Index: {
+            const auto& ix = e.as<IndexExpr>();
+            s << "(index " << shape(*ix.operand) << " " << shape(*ix.index) << ")";
+            break;
+        }
+        case ExprKind::Material:
+            s << shape_of("material", {}, e.as<BlockExpr>().block);
+            break;
+        case ExprKind::Checker:
+            s << shape_of("checker", {}, e.as<BlockExpr>().block);
+            break;
+        case ExprKind::Perlin:
+            s << shape_of("perlin", {}, e.as<BlockExpr>().block);
+            break;
+        case ExprKind::Image:
+            s << "(image " << shape(*e.as<ImageExpr>().path) << ")";
+            break;
     }
     return s.str();
+}
+
+const Expr& let_value(const Program& program, size_t i = 0) {
+    return *program.statements[i]->as<LetStmt>().value;
 }
 
 // The shape of `let x = EXPR`, or the errors.
@@ -117,10 +137,32 @@ std::string expr_shape(const std::string& expr) {
     const auto p = parse_text("let x = " + expr);
     if (p->diags.has_errors()) return "ERROR " + p->errors().front();
     REQUIRE(p->program.statements.size() == 1);
-    return shape(*p->program.statements[0]->value);
+    return shape(let_value(p->program));
 }
 
 }  // namespace
+
+TEST_CASE("operators of one level in a row make one flat chain", "[parser][chain]") {
+    const auto p = parse_text("let x = 1 - 2 + 3 - 4 * 5 * 6 + (7 + 8) + 9");
+    REQUIRE(p->errors().empty());
+    REQUIRE(let_value(p->program).kind == ExprKind::Binary);
+    const auto& sum = let_value(p->program).as<BinaryExpr>();
+    REQUIRE(sum.operands.size() == 6);  // 1, 2, 3, 4 * 5 * 6, (7 + 8), 9
+    REQUIRE(sum.ops.size() == 5);
+    CHECK(sum.ops[0].op == BinaryOp::Sub);
+    CHECK(sum.ops[1].op == BinaryOp::Add);
+    CHECK(sum.ops[2].op == BinaryOp::Sub);
+    CHECK(sum.operands[3]->as<BinaryExpr>().operands.size() == 3);  // 4 * 5 * 6
+    CHECK(sum.operands[4]->as<BinaryExpr>().operands.size() == 2);  // parentheses close a chain
+    CHECK(p->sources.line_col(sum.ops[2].span.file, sum.ops[2].span.begin).column == 19);
+    CHECK(sum.span.begin == 8);
+    CHECK(sum.span.end == 43);
+    const auto logic = parse_text("let x = a && b && c || d || e && f");
+    const auto& any = let_value(logic->program).as<BinaryExpr>();
+    REQUIRE(any.operands.size() == 3);  // a && b && c, d, e && f
+    CHECK(any.operands[0]->as<BinaryExpr>().operands.size() == 3);
+    CHECK(any.operands[2]->as<BinaryExpr>().operands.size() == 2);
+}
 
 TEST_CASE("operator precedence and associativity", "[parser]") {
     CHECK(expr_shape("1 + 2 * 3") == "(+ 1 (* 2 3))");
@@ -187,9 +229,9 @@ TEST_CASE("lists, trailing commas, and the packed form", "[parser]") {
 
     const auto p = parse_text("let m = [<1, -2, 3.5>,\n  <4, 5, 6e2>]");
     REQUIRE_FALSE(p->diags.has_errors());
-    const Expr& e = *p->program.statements[0]->value;
+    const Expr& e = let_value(p->program);
     REQUIRE(e.kind == ExprKind::PackedList);
-    const PackedVectors& pv = *e.packed;
+    const PackedVectors& pv = *e.as<PackedListExpr>().packed;
     CHECK(pv.dims == 3);
     CHECK(pv.values == std::vector<double>{1, -2, 3.5, 4, 5, 600});
     CHECK(pv.offsets == std::vector<uint32_t>{9, 25});
@@ -208,8 +250,8 @@ TEST_CASE("a packed list prints exactly like the generic list it replaces", "[pa
     const std::string elements = "<1, -2, 3>, <4.5, 5, -0>,\n <7, 8, 9e-1>";
     const auto packed = parse_text("let a = [" + elements + "]");
     const auto generic = parse_text("let a = [" + elements + ", x]");
-    REQUIRE(packed->program.statements[0]->value->kind == ExprKind::PackedList);
-    REQUIRE(generic->program.statements[0]->value->kind == ExprKind::List);
+    REQUIRE(let_value(packed->program).kind == ExprKind::PackedList);
+    REQUIRE(let_value(generic->program).kind == ExprKind::List);
     // Drop the list header line and compare the element lines, closing parens aside.
     const auto element_lines = [](const std::string& ast) {
         std::vector<std::string> lines;
@@ -236,8 +278,9 @@ TEST_CASE("blocks: items, several values, the material forms", "[parser]") {
         "plane { normal <0, 1, 0>  material material { base m }  material wall[3] }\n"
         "mesh { vertices [<0,0,0>, <1,0,0>, <0,1,0>]  faces [<0, 1, 2>]  uvs [] }\n");
     REQUIRE(p->errors().empty());
-    const auto& s = p->program.statements;
-    REQUIRE(s.size() == 5);
+    REQUIRE(p->program.statements.size() == 5);
+    std::vector<const ObjectStmt*> s;
+    for (const Stmt* st : p->program.statements) s.push_back(&st->as<ObjectStmt>());
     CHECK(s[0]->block_kind == BlockKind::Sphere);
     REQUIRE(s[0]->block.items.size() == 3);
     CHECK(s[0]->block.items[1].name == "radius");
@@ -261,9 +304,9 @@ TEST_CASE("a triangle's leading vertices form an item without a name", "[parser]
     const auto first_item = [](const std::string& block) {
         const auto p = parse_text("triangle " + block);
         REQUIRE(p->errors().empty());
-        const Item& item = p->program.statements[0]->block.items.at(0);
-        std::string s = "[" + item.name + "]";
-        for (const ExprPtr& v : item.values) s += " " + shape(*v);
+        const Item& item = p->program.statements[0]->as<ObjectStmt>().block.items[0];
+        std::string s = "[" + std::string(item.name) + "]";
+        for (const Expr* v : item.values) s += " " + shape(*v);
         return s;
     };
     CHECK(first_item("{ <0,0,0>, <1,0,0>, <0,1,0>  uv <0,0>, <1,0>, <0,1>  material m }") ==
@@ -293,23 +336,26 @@ TEST_CASE("statements", "[parser]") {
     const auto& s = p->program.statements;
     REQUIRE(s.size() == 8);
     CHECK(s[0]->kind == StmtKind::Let);
-    CHECK(s[0]->name == "n");
-    CHECK(p->sources.line_col(0, s[0]->name_span.begin).column == 5);
+    CHECK(s[0]->as<LetStmt>().name == "n");
+    CHECK(p->sources.line_col(0, s[0]->as<LetStmt>().name_span.begin).column == 5);
     CHECK(s[1]->kind == StmtKind::For);
-    CHECK(shape(*s[1]->value) == "0");
-    CHECK(shape(*s[1]->range_end) == "n");
-    CHECK(s[1]->body.size() == 1);
-    CHECK(s[2]->range_end == nullptr);
-    CHECK(shape(*s[2]->value) == "(list red green)");
-    REQUIRE(s[3]->branches.size() == 3);
-    CHECK(shape(*s[3]->branches[1].condition) == "(== n 1)");
-    CHECK(s[3]->branches[2].condition == nullptr);
-    CHECK(s[3]->branches[2].body.at(0)->kind == StmtKind::Include);
-    CHECK(p->sources.line_col(0, s[3]->branches[2].keyword.begin).column == 43);
-    CHECK(s[4]->branches.size() == 1);
-    CHECK(s[5]->name == "dir/b \"q\".wsdi");
-    CHECK(s[6]->block_kind == BlockKind::Settings);
-    CHECK(s[7]->block_kind == BlockKind::Camera);
+    const auto& range = s[1]->as<ForStmt>();
+    CHECK(shape(*range.value) == "0");
+    CHECK(shape(*range.range_end) == "n");
+    CHECK(range.body.size() == 1);
+    CHECK(s[2]->as<ForStmt>().range_end == nullptr);
+    CHECK(shape(*s[2]->as<ForStmt>().value) == "(list red green)");
+    const auto& branches = s[3]->as<IfStmt>().branches;
+    REQUIRE(branches.size() == 3);
+    CHECK(shape(*branches[1].condition) == "(== n 1)");
+    CHECK(branches[2].condition == nullptr);
+    REQUIRE(branches[2].body.size() == 1);
+    CHECK(branches[2].body[0]->kind == StmtKind::Include);
+    CHECK(p->sources.line_col(0, branches[2].keyword.begin).column == 43);
+    CHECK(s[4]->as<IfStmt>().branches.size() == 1);
+    CHECK(s[5]->as<IncludeStmt>().path == "dir/b \"q\".wsdi");
+    CHECK(s[6]->as<ObjectStmt>().block_kind == BlockKind::Settings);
+    CHECK(s[7]->as<ObjectStmt>().block_kind == BlockKind::Camera);
     CHECK(s[7]->span.end == p->sources.file(0).text.size());
 }
 
@@ -346,7 +392,8 @@ TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
     CHECK(d[7].help == std::vector<std::string>{"'sphere' is a reserved word; choose another name"});
     // The statement after a reserved-word name still parses.
     bool found_w = false;
-    for (const StmtPtr& s : p->program.statements) found_w |= s->kind == StmtKind::Let && s->name == "w";
+    for (const Stmt* s : p->program.statements)
+        found_w |= s->kind == StmtKind::Let && s->as<LetStmt>().name == "w";
     CHECK(found_w);
 
     const auto assign = parse_text("x = 3");
@@ -402,6 +449,8 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
         "let x = " + nested("<", "1, 2", ", 3>", 10'000),
         "let x = " + nested("-", "1", "", 10'000),
         "let x = " + nested("f(", "1", ")", 10'000),
+        "let x = " + nested("", "a", "[0]", 100'000),
+        "let x = " + nested("", "a", ".x", 100'000),
         nested("if true { ", "", "}", 10'000),
         "let m = " + nested("material { base ", "m", " }", 10'000),
         "sphere { material " + nested("{ base material ", "m", "}", 10'000) + " }",
@@ -418,6 +467,7 @@ TEST_CASE("nesting deeper than the limit is one error, never a stack overflow", 
     }
     // Just under the limit is fine.
     CHECK(parse_text("let x = " + nested("(", "1", ")", 200))->errors().empty());
+    CHECK(parse_text("let x = " + nested("", "a", "[0]", 250))->errors().empty());
     CHECK(parse_text(nested("if true { ", "", "}", 200))->errors().empty());
 }
 
