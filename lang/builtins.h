@@ -13,10 +13,13 @@
 
 namespace wsd::lang {
 
+class ParamTable;
+
 struct CallContext {
     const CallExpr& call;            // the call: its name_span, its argument expressions
     const std::vector<Value>& args;  // evaluated arguments, one per call.args
     Diagnostics& diags;
+    const ParamTable* params;  // the --define values `param` reads (null: none given)
 };
 
 using BuiltinFn = std::optional<Value> (*)(const CallContext&);

@@ -367,7 +367,7 @@ std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
         args.push_back(std::move(*v));
     }
     if (!ok) return std::nullopt;
-    return f->fn(CallContext{expr, args, diags_});
+    return f->fn(CallContext{expr, args, diags_, params_});
 }
 
 std::optional<Value> Interpreter::eval_member(const MemberExpr& expr) {

@@ -1,7 +1,7 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block statements handed to lowering.
-// Expressions are in evaluate.cpp.
+// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block statements handed
+// to lowering. Expressions are in evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>
@@ -327,7 +327,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
     if (const Included* first = visible_include(key)) {
         auto adds = adds_objects_.find(key);
         if (adds != adds_objects_.end() && adds->second) {
-            Diagnostic& d = diags_.warning(at, "include of '" + stmt.name +
+            Diagnostic& d = diags_.warning(at, "include of '" + std::string(stmt.path) +
                                                    "' skipped: it was already included in this scope or an "
                                                    "enclosing one, so its objects are not added again");
             if (first->site.end > first->site.begin) d.notes.push_back({first->site, "first included here"});

@@ -6,7 +6,6 @@
 
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -18,6 +17,8 @@
 #include "lang/value.h"
 
 namespace wsd::lang {
+
+class ParamTable;
 
 struct Limits {
     uint64_t loop_iterations = 100'000'000;  // in total
@@ -36,6 +37,8 @@ public:
 
     // Runs the main file of a scene (its file id is the scene's first include-cycle entry).
     void run(const Program& program);
+    // The --define values that `param` returns; the table must outlive the run.
+    void set_params(const ParamTable* params) { params_ = params; }
     // Evaluates one expression in the current (top) scope.
     std::optional<Value> evaluate(const Expr& expr);
     // A binding of the file's top scope (for tests); nullopt if absent or failed.
@@ -125,6 +128,7 @@ private:
     Diagnostics& diags_;
     SceneBuilder& scene_;
     Limits limits_;
+    const ParamTable* params_ = nullptr;
     std::vector<Scope> scopes_;  // scopes_[0..depth_) are live; the rest are reused storage
     size_t scope_count_ = 0;
     int depth_ = 0;

@@ -34,8 +34,8 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         if (diags.error_count() > errors_before) return std::nullopt;
         SceneBuilder builder(file);
         {
-            const ParamScope params(options.params);
             Interpreter interpreter(sources, diags, builder);
+            interpreter.set_params(options.params);
             interpreter.run(program);
             camera_seen = interpreter.camera_seen();
             aborted = interpreter.aborted();

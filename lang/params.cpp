@@ -10,8 +10,6 @@ namespace wsd::lang {
 
 namespace {
 
-thread_local const ParamTable* current_table = nullptr;
-
 bool positionless(const Value& v) {
     return v.is(ValueType::Number) || v.is(ValueType::Bool) || v.is(ValueType::String) || v.is_vector();
 }
@@ -30,14 +28,6 @@ std::vector<std::string> ParamTable::unread() const {
     for (const auto& [name, value] : values_)
         if (!read_.count(name)) names.push_back(name);
     return names;
-}
-
-ParamScope::ParamScope(const ParamTable* table) : previous_(current_table) {
-    current_table = table;
-}
-
-ParamScope::~ParamScope() {
-    current_table = previous_;
 }
 
 std::optional<Value> evaluate_define(const std::string& expr, std::string& error) {
@@ -76,13 +66,13 @@ std::optional<Value> builtin_param(const CallContext& c) {
         return std::nullopt;
     }
     const std::string& name = c.args[0].string();
-    const Value* given = current_table ? current_table->read(name) : nullptr;
+    const Value* given = c.params ? c.params->read(name) : nullptr;
     if (!given) return c.args[1];
     if (given->type() != c.args[1].type()) {
         Diagnostic& d =
-            c.diags.error(c.call.op_span, "--define " + name + " is a " + type_name(given->type()) +
-                                              ", but the default of param(\"" + name + "\", ...) is a " +
-                                              type_name(c.args[1].type()));
+            c.diags.error(c.call.name_span, "--define " + name + " is a " + type_name(given->type()) +
+                                                ", but the default of param(\"" + name + "\", ...) is a " +
+                                                type_name(c.args[1].type()));
         d.help.push_back("give a " + std::string(type_name(c.args[1].type())) + " with --define " + name +
                          "=..., or change the default");
         return std::nullopt;

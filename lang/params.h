@@ -1,6 +1,6 @@
 // Values from the command line: `--define NAME=EXPR` sets what the built-in `param("NAME",
-// DEFAULT)` returns. The table is filled once per command and installed for the duration of a
-// load by ParamScope, so that `param` stays an ordinary built-in function.
+// DEFAULT)` returns. The table is filled once per command and handed to the interpreter
+// (LoadOptions::params), which passes it to built-in calls.
 #pragma once
 
 #include <map>
@@ -28,24 +28,12 @@ private:
     mutable std::set<std::string> read_;
 };
 
-// Makes `table` the one that `param` reads on this thread while the scope lives (one load).
-class ParamScope {
-public:
-    explicit ParamScope(const ParamTable* table);
-    ~ParamScope();
-    ParamScope(const ParamScope&) = delete;
-    ParamScope& operator=(const ParamScope&) = delete;
-
-private:
-    const ParamTable* previous_;
-};
-
 // Evaluates the EXPR of a --define with only the built-ins in scope. The value must be a number,
 // bool, string or vector (values that carry no source position of their own); otherwise nullopt
 // and `error` says why.
 std::optional<Value> evaluate_define(const std::string& expr, std::string& error);
 
-// The built-in `param(NAME, DEFAULT)`: the installed table's value for NAME, else DEFAULT; a
+// The built-in `param(NAME, DEFAULT)`: the call's table's value for NAME, else DEFAULT; a
 // value whose type differs from DEFAULT's is an error at the call.
 std::optional<Value> builtin_param(const CallContext& c);
 
