@@ -11,14 +11,17 @@ namespace wsd::lang {
 
 namespace {
 
-constexpr size_t kMaxPrimitives = size_t(1) << 24;
-
 bool fits_float(double x) {
-    return std::fabs(x) <= FLT_MAX;
+    return std::fabs(x) <= render::kMaxSingle;
 }
 
 std::string vertex_count_text(size_t n) {
     return std::to_string(n) + (n == 1 ? " vertex" : " vertices");
+}
+
+std::string too_many_faces(size_t n) {
+    return std::to_string(n) + " faces, more than the limit of " + std::to_string(render::kMaxPrimitives) +
+           " primitives";
 }
 
 // A list of vector3 as floats (vertices or normals); false after reporting the first bad element.
@@ -112,9 +115,8 @@ bool lower_inline(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         r.fail(r.value_span("faces"), "'faces' is empty");
         return false;
     }
-    if (faces.size() > kMaxPrimitives) {
-        r.fail(r.value_span("faces"), "mesh has " + std::to_string(faces.size()) +
-                                          " faces, more than the limit of 16777216 primitives");
+    if (faces.size() > render::kMaxPrimitives) {
+        r.fail(r.value_span("faces"), "mesh has " + too_many_faces(faces.size()));
         return false;
     }
     auto mesh = std::make_shared<render::MeshData>();
@@ -188,13 +190,11 @@ bool lower_file(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         r.fail(at, "mesh file '" + path + "' has no faces");
         return false;
     }
-    if (mesh->faces.size() > kMaxPrimitives) {
-        r.fail(at, "mesh file '" + path + "' has " + std::to_string(mesh->faces.size()) +
-                       " faces, more than the limit of 16777216 primitives");
+    if (mesh->faces.size() > render::kMaxPrimitives) {
+        r.fail(at, "mesh file '" + path + "' has " + too_many_faces(mesh->faces.size()));
         return false;
     }
     o.record.span = at;
-    o.record.obj = true;
     o.primitives = mesh->faces.size();
     o.shape.mesh = std::move(mesh);
     return true;

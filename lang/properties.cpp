@@ -10,9 +10,6 @@ namespace wsd::lang {
 
 namespace {
 
-constexpr double kMinScale = 1e-12;
-constexpr double kMaxScale = 1e12;
-
 std::string quoted(std::string_view s) {
     std::string out(1, '\'');
     out.append(s);
@@ -91,14 +88,9 @@ const std::vector<std::string_view> kTransformNames = {"scale", "rotate", "trans
 
 }  // namespace
 
-std::string Range::describe() const {
-    bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-    if (has_lo && has_hi)
-        return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
-               (hi_open ? ")" : "]");
-    if (has_lo) return std::string(lo_open ? "> " : ">= ") + format_number(lo);
-    if (has_hi) return std::string(hi_open ? "< " : "<= ") + format_number(hi);
-    return "finite";
+const std::vector<std::string_view>& Property::words() const {
+    static const std::vector<std::string_view> none;
+    return field ? field->words : none;
 }
 
 const Property* BlockTable::find(std::string_view name) const {
@@ -212,11 +204,11 @@ std::optional<Value> BlockReader::read_value(const Property& p, const Expr& expr
     if (p.type == PropType::Word) {
         // Enumerated values are bare words: read the identifier's name, never evaluate it.
         if (expr.kind != ExprKind::Ident ||
-            std::find(p.words.begin(), p.words.end(), expr.text) == p.words.end()) {
+            std::find(p.words().begin(), p.words().end(), expr.text) == p.words().end()) {
             Diagnostic& d =
-                diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words));
+                diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words()));
             if (expr.kind == ExprKind::Ident) {
-                std::vector<std::string> candidates(p.words.begin(), p.words.end());
+                std::vector<std::string> candidates(p.words().begin(), p.words().end());
                 std::string match = closest_match(expr.text, candidates);
                 if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
             }
@@ -237,31 +229,15 @@ bool BlockReader::check_value(const Property& p, const Value& v, const Expr& exp
                      name() + " must be " + expected_type(p.type) + ", found " + type_name(v.type()));
         return false;
     }
-    if (p.type == PropType::Integer) {
-        double x = v.number();
-        bool integral = x == std::floor(x);
-        if (!integral || !p.range.contains(x)) {
-            std::string range = p.range.unbounded() ? ""
-                                                    : " from " + format_number(p.range.lo) + " to " +
-                                                          format_number(p.range.hi);
-            diags_.error(expr.span, name() + " must be an integer" + range + ", found " + format_number(x));
-            return false;
-        }
-        return true;
-    }
-    if (p.type == PropType::Number && !p.range.contains(v.number())) {
-        diags_.error(expr.span,
-                     name() + " must be " + p.range.describe() + ", found " + format_number(v.number()));
-        return false;
-    }
-    if (p.type == PropType::Colour) {
-        glm::dvec3 c = v.vec3();
-        if (c.x < 0 || c.y < 0 || c.z < 0) {
-            diags_.error(expr.span, name() + " must have components >= 0, found " + describe(v));
-            return false;
-        }
-    }
-    return true;
+    if (!p.field) return true;
+    std::optional<std::string> problem;
+    if (v.is(ValueType::Number) && (p.type == PropType::Number || p.type == PropType::Integer))
+        problem = render::number_problem(*p.field, v.number());
+    else if (v.is(ValueType::Vector3))
+        problem = render::vec3_problem(*p.field, v.vec3());
+    if (!problem) return true;
+    diags_.error(expr.span, name() + " " + *problem);
+    return false;
 }
 
 void BlockReader::read_transform(const Item& item) {
@@ -286,7 +262,7 @@ void BlockReader::read_transform(const Item& item) {
         t.v = v->is(ValueType::Number) ? glm::dvec3(v->number()) : v->vec3();
         for (int i = 0; i < 3; ++i) {
             double m = std::fabs(t.v[i]);
-            if (m < kMinScale || m > kMaxScale) {
+            if (m < render::kMinScale || m > render::kMaxScale) {
                 fail(expr.span,
                      "'scale' factors must have a magnitude in [1e-12, 1e12], found " + describe(*v));
                 return;
@@ -345,6 +321,26 @@ glm::dvec3 BlockReader::vec3(std::string_view name, glm::dvec3 fallback) const {
 std::string_view BlockReader::word(std::string_view name, std::string_view fallback) const {
     const Value* v = value(name);
     return v ? std::string_view(v->string()) : fallback;
+}
+
+void BlockReader::apply(void* spec) const {
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        const Slot& s = slots_[i];
+        const render::Field* f = table_.properties[i].field;
+        if (!s.valid || s.values.empty() || !f) continue;
+        const Value& v = s.values[0];
+        if (f->access.set_number && v.is(ValueType::Number)) f->access.set_number(spec, v.number());
+        if (f->access.set_number && v.is(ValueType::Bool)) f->access.set_number(spec, v.boolean() ? 1 : 0);
+        if (f->access.set_vec3 && v.is(ValueType::Vector3)) f->access.set_vec3(spec, v.vec3());
+    }
+}
+
+std::vector<FieldSpan> BlockReader::field_spans() const {
+    std::vector<FieldSpan> out;
+    for (size_t i = 0; i < slots_.size(); ++i)
+        if (slots_[i].item && table_.properties[i].field)
+            out.push_back({table_.properties[i].field, value_span(table_.properties[i].name)});
+    return out;
 }
 
 bool BlockReader::require(std::string_view name) {

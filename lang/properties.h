@@ -6,7 +6,6 @@
 
 #include <functional>
 #include <glm/glm.hpp>
-#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,49 +14,28 @@
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 #include "lang/value.h"
+#include "render/params.h"
 
 namespace wsd::lang {
 
-enum class PropType {
-    Number,
-    Integer,  // a number with an integral value
-    Bool,
-    String,
-    Vector2,
-    Vector3,
-    Colour,  // a vector3 with components >= 0
-    Material,
-    Texture,
-    List,
-    Word,  // a bare identifier from `words`, read without evaluating it
-    NumberOrVector3,
-};
+// The types and ranges of properties are the render tables' (render/params.h).
+using PropType = render::FieldType;
 
-struct Range {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    bool lo_open = false, hi_open = false;
-    bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
-    bool unbounded() const { return lo == -hi && hi == std::numeric_limits<double>::infinity(); }
-    std::string describe() const;  // "> 0", "in [0, 1)", ">= 0"
-};
-
-constexpr Range at_least(double lo) {
-    return Range{lo, std::numeric_limits<double>::infinity(), false, false};
-}
-constexpr Range above(double lo) {
-    return Range{lo, std::numeric_limits<double>::infinity(), true, false};
-}
-constexpr Range between(double lo, double hi) {
-    return Range{lo, hi, false, false};
-}
-
+// A property as the language reads it: the render field it sets, plus the facts only the
+// language has (the name it is written under, how many values it takes).
 struct Property {
     std::string_view name;  // "" is a triangle's leading vertices
     PropType type;
-    Range range = {};
     int min_values = 1, max_values = 1;
-    std::vector<std::string_view> words = {};  // Word
+    const render::Field* field = nullptr;  // null for language-only properties (`base`, transforms)
+    const std::vector<std::string_view>& words() const;
+};
+
+// Where a property's value was written, by the render field it sets: errors that build_scene
+// reports about a field are shown at its value.
+struct FieldSpan {
+    const render::Field* field;
+    Span value;
 };
 
 struct BlockTable {
@@ -98,6 +76,12 @@ public:
     bool boolean(std::string_view name, bool fallback) const;
     glm::dvec3 vec3(std::string_view name, glm::dvec3 fallback) const;
     std::string_view word(std::string_view name, std::string_view fallback) const;
+
+    // Writes every valid property that sets a render field with access into `spec`, the spec
+    // struct of the table's element (render::Settings for "settings", ...).
+    void apply(void* spec) const;
+    // The value span of every present property that sets a render field.
+    std::vector<FieldSpan> field_spans() const;
 
     // Reports "missing property" at the keyword unless present (or present but failed).
     bool require(std::string_view name);

@@ -29,9 +29,10 @@ std::optional<std::string> validate_light(const LightSpec& spec) {
         return "area light edges u and v must not be parallel";
     if (spec.samples_u < 1 || spec.samples_v < 1 || spec.samples_u > kMaxLightGridSide ||
         spec.samples_v > kMaxLightGridSide)
-        return "area light samples must be between 1 and 1024 in each direction";
+        return "area light samples must be between 1 and " + std::to_string(kMaxLightGridSide) +
+               " in each direction";
     if (long(spec.samples_u) * long(spec.samples_v) > kMaxLightSamples)
-        return "area light sample grid must have at most 65536 cells";
+        return "area light sample grid must have at most " + std::to_string(kMaxLightSamples) + " cells";
     return std::nullopt;
 }
 

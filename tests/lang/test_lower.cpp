@@ -499,11 +499,37 @@ TEST_CASE("SpecErrors find faces given as a general list", "[lower][spec-errors]
     const uint32_t tag = e->scene.spec.shapes[0].tag;
     Diagnostics diags;
     report_spec_errors(
-        {wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "degenerate triangle", 1}}, e->scene,
-        e->sources, diags);
+        {wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "face 1: degenerate triangle", 1}},
+        e->scene, e->sources, diags);
     REQUIRE(diags.all().size() == 1);
     CHECK(where(e->sources, diags.all()[0].span) == "3:61");
     CHECK(diags.all()[0].message == "face 1: degenerate triangle");
+}
+
+TEST_CASE("SpecErrors about a field are shown at its value, or at the element when not written",
+          "[lower][spec-errors]") {
+    auto e =
+        evaluate_text(std::string(kCamera) + "settings { height 100 }\nlight point { position <0, 5, 0> }\n" +
+                      "sphere { center <0, 0, 0>  radius 2" + kMat + "}\n");
+    REQUIRE(e->errors().empty());
+    using wsd::render::SpecError, wsd::render::SpecItem;
+    const auto& spec = e->scene.spec;
+    Diagnostics diags;
+    report_spec_errors({SpecError{SpecItem::Shape, 0, spec.shapes[0].tag, "bad radius", -1, "radius"},
+                        SpecError{SpecItem::Shape, 0, spec.shapes[0].tag, "bad sphere", -1},
+                        SpecError{SpecItem::Settings, 0, 0, "bad height", -1, "height"},
+                        SpecError{SpecItem::Settings, 0, 0, "bad width", -1, "width"},
+                        SpecError{SpecItem::Light, 0, spec.lights[0].tag, "bad colour", -1, "color"},
+                        SpecError{SpecItem::Camera, 0, spec.camera.tag, "bad up", -1, "look_at"}},
+                       e->scene, e->sources, diags);
+    REQUIRE(diags.all().size() == 6);
+    CHECK(where(e->sources, diags.all()[0].span) == "4:35");  // the radius value
+    CHECK(where(e->sources, diags.all()[1].span) == "4:1");   // the sphere
+    CHECK(where(e->sources, diags.all()[2].span) == "2:19");  // the height value
+    CHECK(where(e->sources, diags.all()[3].span) == "2:1");   // width not written: the block
+    CHECK(where(e->sources, diags.all()[4].span) == "3:1");   // color not written: the light
+    CHECK(diags.all()[0].message == "bad radius");
+    CHECK(where(e->sources, diags.all()[5].span) == "1:39");  // the look_at value
 }
 
 TEST_CASE("SpecErrors in an included file carry the include chain", "[lower][spec-errors]") {
