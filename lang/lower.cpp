@@ -113,7 +113,8 @@ render::Mat4 from_rows(const double (&m)[3][3]) {
 
 std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
     if (const Value* m = r.value("material")) return m->material();
-    if (r.has("material")) return std::nullopt;  // present but failed: already reported
+    // Present but failed, or meant by a misspelt name: already reported.
+    if (r.has("material") || r.suggested("material")) return std::nullopt;
     std::optional<MaterialPtr> fallback = ctx.default_material(r.keyword());
     if (!fallback) return std::nullopt;
     if (!*fallback) {

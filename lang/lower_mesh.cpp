@@ -213,6 +213,10 @@ bool lower_mesh(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         return lower_file(r, ctx, o);
     }
     if (!r.has("vertices") && !r.has("faces")) {
+        if (r.suggested("file") || r.suggested("vertices") || r.suggested("faces")) {
+            r.failed();  // a misspelt name already reported
+            return false;
+        }
         r.fail(r.keyword(), "missing property 'file' (or 'vertices' and 'faces') in mesh");
         return false;
     }

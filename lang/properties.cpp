@@ -86,6 +86,25 @@ bool type_matches(PropType t, const Value& v) {
 
 const std::vector<std::string_view> kTransformNames = {"scale", "rotate", "translate"};
 
+// POV-Ray's words for what wsd spells otherwise, answered wherever they are written as a property.
+const std::pair<std::string_view, std::string_view> kPovRayWords[] = {
+    {"pigment",
+     "wsd has no 'pigment': write 'material { color <r, g, b> }' (or a 'texture' in the material)"},
+    {"finish", "wsd has no 'finish': write ambient, diffuse, specular, reflection ... in 'material { ... }'"},
+    {"light_source", "a light is a statement of its own: 'light point { position ... }'"},
+    {"location", "a camera's eye point is its 'position'"},
+    {"angle", "a camera's field of view is 'fov' (vertical, in degrees)"},
+};
+
+// Help for a name that belongs in an object's material.
+std::optional<std::string> material_hint(std::string_view name) {
+    if (name == "color" || name == "colour")
+        return std::string("a colour belongs in a material: write 'material { color ... }'");
+    if (name == "texture")
+        return std::string("a texture belongs in a material: write 'material { texture ... }'");
+    return std::nullopt;
+}
+
 }  // namespace
 
 const std::vector<std::string_view>& Property::words() const {
@@ -149,7 +168,15 @@ void BlockReader::read_item(const Item& item) {
             }
         }
         std::string match = hinted ? "" : closest_match(item.name, candidates);
-        if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
+        if (!match.empty()) {
+            d.help.push_back("did you mean '" + match + "'?");
+            suggested_.push_back(match);
+        }
+        for (const auto& [word, hint] : kPovRayWords)
+            if (word == item.name) d.help.emplace_back(hint);
+        if (table_.transforms && table_.find("material")) {
+            if (auto hint = material_hint(item.name)) d.help.push_back(*hint);
+        }
         ok_ = false;
         return;
     }
@@ -343,8 +370,16 @@ std::vector<FieldSpan> BlockReader::field_spans() const {
     return out;
 }
 
+bool BlockReader::suggested(std::string_view name) const {
+    return std::find(suggested_.begin(), suggested_.end(), name) != suggested_.end();
+}
+
 bool BlockReader::require(std::string_view name) {
     if (has(name)) return true;
+    if (suggested(name)) {
+        ok_ = false;  // the unknown name that meant it is already reported
+        return false;
+    }
     if (name.empty())
         fail(keyword_, table_.what + " needs its three vertices first");
     else

@@ -83,8 +83,10 @@ public:
     // The value span of every present property that sets a render field.
     std::vector<FieldSpan> field_spans() const;
 
-    // Reports "missing property" at the keyword unless present (or present but failed).
+    // Reports "missing property" at the keyword unless present (or present but failed), or
+    // unless an unknown name in the block was already answered with "did you mean" it.
     bool require(std::string_view name);
+    bool suggested(std::string_view name) const;
     void fail(Span span, std::string message);  // report an error and mark the block failed
     void failed() { ok_ = false; }              // a problem already reported elsewhere
     const std::vector<Transform>& transforms() const { return transforms_; }
@@ -111,6 +113,7 @@ private:
     const EvalFn& eval_;
     std::vector<Slot> slots_;  // parallel to table_.properties
     std::vector<Transform> transforms_;
+    std::vector<std::string> suggested_;  // names offered as "did you mean"
     bool ok_ = true;
 };
 
