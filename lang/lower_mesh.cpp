@@ -19,6 +19,10 @@ std::string vertex_count_text(size_t n) {
     return std::to_string(n) + (n == 1 ? " vertex" : " vertices");
 }
 
+std::string element_count_text(size_t n) {
+    return std::to_string(n) + (n == 1 ? " element" : " elements");
+}
+
 std::string too_many_faces(size_t n) {
     return std::to_string(n) + " faces, more than the limit of " + std::to_string(render::kMaxPrimitives) +
            " primitives";
@@ -98,8 +102,8 @@ bool read_faces(BlockReader& r, BlockContext& ctx, const ListValue& list, size_t
 
 bool check_per_vertex(BlockReader& r, const char* name, size_t n, size_t vertex_count) {
     if (n == vertex_count) return true;
-    r.fail(r.value_span(name), std::string(1, '\'').append(name) + "' has " + std::to_string(n) +
-                                   " elements, but the mesh has " + vertex_count_text(vertex_count) +
+    r.fail(r.value_span(name), std::string(1, '\'').append(name) + "' has " + element_count_text(n) +
+                                   ", but the mesh has " + vertex_count_text(vertex_count) +
                                    " (one per vertex)");
     return false;
 }

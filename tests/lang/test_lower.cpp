@@ -425,7 +425,7 @@ TEST_CASE("bad mesh faces are reported at the face, naming it", "[lower][mesh]")
     CHECK(body_errors(verts + "[]" + kMat + "}") == std::vector<std::string>{"1:68: 'faces' is empty"});
     CHECK(
         body_errors(verts + "[<0, 1, 2>] uvs [<0, 0>]" + kMat + "}") ==
-        std::vector<std::string>{"1:84: 'uvs' has 1 elements, but the mesh has 4 vertices (one per vertex)"});
+        std::vector<std::string>{"1:84: 'uvs' has 1 element, but the mesh has 4 vertices (one per vertex)"});
     CHECK(body_errors("mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, "
                       "1>, <0, 0, 0>, <0, 0, 1>]" +
                       kMat + "}") == std::vector<std::string>{"1:89: normal 1 is the zero vector"});
