@@ -571,3 +571,18 @@ TEST_CASE("the primitive limit counts mesh triangles", "[lower][limits]") {
               "2:1: the scene has more than 3 primitives (the limit; a mesh counts its triangles)"});
     CHECK(e->interpreter->aborted());
 }
+
+TEST_CASE("a scene without lights is warned about, once, at its camera", "[lower][lights]") {
+    auto l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 1" + kMat + "}\n");
+    REQUIRE(l->scene);
+    CHECK(messages(l->diags, l->sources, Severity::Warning) ==
+          std::vector<std::string>{"1:1: no lights: only ambient light"});
+    // A scene with a light, a fragment (lit by the scene that includes it) and a scene with
+    // errors are not.
+    l = load_text(std::string(kCamera) + "light point { position <0, 5, 0> }\n");
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+    l = load_text("sphere { center <0, 0, 0> radius 1" + kMat + "}\n", true);
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+    l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 0" + kMat + "}\n");
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+}
