@@ -19,7 +19,7 @@ std::string quoted(std::string_view s) {
 // taking one value.
 BlockTable generated(render::Element element, bool transforms = false) {
     const render::ElementTable& t = render::element_table(element);
-    BlockTable b{std::string(t.name), {}, transforms};
+    BlockTable b{std::string(t.name), element, {}, transforms};
     for (const render::Field& f : t.fields) b.properties.push_back({f.name, f.type, 1, 1, &f});
     return b;
 }

@@ -364,9 +364,14 @@ void BlockReader::apply(void* spec) const {
 
 std::vector<FieldSpan> BlockReader::field_spans() const {
     std::vector<FieldSpan> out;
-    for (size_t i = 0; i < slots_.size(); ++i)
-        if (slots_[i].item && table_.properties[i].field)
-            out.push_back({table_.properties[i].field, value_span(table_.properties[i].name)});
+    out.reserve(slots_.size());
+    const render::Field* first = render::element_table(table_.element).fields.data();
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        const render::Field* f = table_.properties[i].field;
+        if (!slots_[i].item || !f) continue;
+        const Span at = value_span(table_.properties[i].name);
+        out.push_back({at.begin, at.end, table_.element, static_cast<uint8_t>(f - first)});
+    }
     return out;
 }
 

@@ -91,7 +91,8 @@ Span locate(const render::SpecError& e, const SpanRecord& rec, const LoweredScen
             const SourceManager& sources) {
     if (!e.field.empty())
         for (uint32_t i = rec.fields_begin; i < rec.fields_end; ++i)
-            if (scene.field_spans[i].field->name == e.field) return scene.field_spans[i].value;
+            if (scene.field_spans[i].table_field().name == e.field)
+                return Span{rec.span.file, scene.field_spans[i].begin, scene.field_spans[i].end};
     if (e.face < 0 || !rec.faces) return rec.span;
     const size_t face = static_cast<size_t>(e.face);
     if (face < rec.faces->offsets.size()) {

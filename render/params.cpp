@@ -428,10 +428,11 @@ std::string format_vec3(const Vec3& v) {
 
 std::optional<std::string> number_problem(const Field& field, double x) {
     const Range& r = field.range;
+    const bool integral = field.type != FieldType::Integer || x == std::floor(x);
+    if (std::isfinite(x) && integral && r.contains(x)) return std::nullopt;
     const std::string found = ", found " + format_number(x);
     if (!std::isfinite(x)) return "must be a finite number" + found;
     if (field.type == FieldType::Integer) {
-        if (x == std::floor(x) && r.contains(x)) return std::nullopt;
         std::string message = "must be an integer";
         if (r.has_lo() && r.has_hi())
             message.append(" from ").append(format_number(r.lo)).append(" to ").append(format_number(r.hi));
@@ -439,18 +440,16 @@ std::optional<std::string> number_problem(const Field& field, double x) {
             message.append(" ").append(r.describe());
         return message + found;
     }
-    if (r.contains(x)) return std::nullopt;
     if (r.hi == kMaxSingle && x > kMaxSingle) return "is too large for single precision" + found;
     return "must be " + r.describe() + found;
 }
 
 std::optional<std::string> vec3_problem(const Field& field, const Vec3& v) {
-    const std::string found = ", found " + format_vec3(v);
-    if (!finite3(v)) return "must be finite" + found;
+    if (!finite3(v)) return "must be finite, found " + format_vec3(v);
     if (field.type != FieldType::Colour) return std::nullopt;
-    if (v.x < 0 || v.y < 0 || v.z < 0) return "must have components >= 0" + found;
+    if (v.x < 0 || v.y < 0 || v.z < 0) return "must have components >= 0, found " + format_vec3(v);
     if (v.x > kMaxSingle || v.y > kMaxSingle || v.z > kMaxSingle)
-        return "is too large for single precision" + found;
+        return "is too large for single precision, found " + format_vec3(v);
     return std::nullopt;
 }
 
