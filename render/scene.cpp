@@ -14,13 +14,14 @@ namespace wsd::render {
 
 namespace {
 
-void check_settings(const Settings& s, std::vector<SpecError>& errors) {
+bool check_settings(const Settings& s, std::vector<SpecError>& errors) {
     const ElementTable& table = element_table(Element::Settings);
-    check_fields(table, &s, SpecItem::Settings, 0, 0, errors);
-    const Range& side = table.find("width")->range;
-    if (!side.contains(s.width) || !side.contains(s.height)) return;
-    if (auto problem = image_size_problem(s.width, s.height))
+    if (!check_fields(table, &s, SpecItem::Settings, 0, 0, errors)) return false;
+    if (auto problem = image_size_problem(s.width, s.height)) {
         errors.push_back({SpecItem::Settings, 0, 0, *problem, -1, "height"});
+        return false;
+    }
+    return true;
 }
 
 bool check_material(const MaterialSpec& m, size_t index, std::vector<SpecError>& errors) {
@@ -179,11 +180,13 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     const size_t errors_before = errors.size();
     auto scene = std::shared_ptr<Scene>(new Scene());
 
-    check_settings(spec.settings, errors);
+    const bool settings_ok = check_settings(spec.settings, errors);
     scene->settings_ = spec.settings;
 
+    // The camera's frame needs the image size: only once the settings are valid.
     if (check_fields(element_table(Element::Camera), &spec.camera, SpecItem::Camera, 0, spec.camera.tag,
-                     errors)) {
+                     errors) &&
+        settings_ok) {
         std::string message;
         if (auto cam = Camera::create(spec.camera, spec.settings.width, spec.settings.height, message))
             scene->camera_ = *cam;
