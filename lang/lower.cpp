@@ -65,12 +65,8 @@ std::map<std::string_view, BlockTable> make_tables() {
     return t;
 }
 
-// Two directions are treated as parallel when the sine of their angle is below this: the frame
-// built from them would be dominated by rounding.
-constexpr double kParallelSine = 1e-9;
-
 bool parallel(glm::dvec3 a, glm::dvec3 b) {
-    return glm::length(glm::cross(a, b)) <= kParallelSine * glm::length(a) * glm::length(b);
+    return glm::length(glm::cross(a, b)) <= render::kParallelSine * glm::length(a) * glm::length(b);
 }
 
 // sin and cos of an angle in degrees, exact at multiples of 90° so that quarter turns map axes

@@ -37,6 +37,10 @@ inline constexpr int kMaxOctaves = 64;  // perlin textures
 // is written instead of rendering as infinity (geometry stays double precision).
 inline constexpr double kMaxSingle = FLT_MAX;
 
+// Two directions (a camera's up and view, an area light's edges) count as parallel when the sine
+// of their angle is below this: a frame built from them would be dominated by rounding.
+inline constexpr double kParallelSine = 1e-9;
+
 // Magnitude of each `scale` factor: beyond it a transform is as good as singular.
 inline constexpr double kMinScale = 1e-12;
 inline constexpr double kMaxScale = 1e12;
