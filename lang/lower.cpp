@@ -217,7 +217,7 @@ render::Mat4 compose_transforms(const std::vector<Transform>& transforms) {
 std::optional<Lowered<render::Settings>> lower_settings(const Stmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table("settings"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     render::Settings s;
-    r.apply(&s);
+    r.apply(s);
     if (r.ok()) {
         if (auto problem = render::image_size_problem(s.width, s.height)) {
             std::string later = !r.has("height") || (r.has("width") && written_after(r, "width", "height"))
@@ -235,7 +235,7 @@ std::optional<Lowered<render::CameraSpec>> lower_camera(const Stmt& stmt, BlockC
     r.require("position");
     r.require("look_at");
     render::CameraSpec c;
-    r.apply(&c);
+    r.apply(c);
     if (!r.ok()) return std::nullopt;
     glm::dvec3 forward = c.look_at - c.position;
     if (forward == glm::dvec3(0.0)) {
@@ -271,7 +271,7 @@ std::optional<Lowered<render::LightSpec>> lower_light(const Stmt& stmt, BlockCon
     BlockReader r(block_table(area ? "light area" : "light point"), stmt.block, stmt.keyword, ctx.diags,
                   ctx.eval);
     r.require("position");
-    r.apply(&l);
+    r.apply(l);
     if (r.ok()) {
         if (auto problem = render::light_radiance_problem(l.color, l.intensity))
             r.fail(r.value_span(r.has("intensity") ? "intensity" : "color"), *problem);
@@ -326,7 +326,7 @@ std::optional<LoweredObject> lower_object(const Stmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table(what), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     LoweredObject o;
     o.record.span = stmt.keyword;
-    r.apply(&o.shape);
+    r.apply(o.shape);
     switch (stmt.block_kind) {
         case BlockKind::Sphere:
             lower_sphere(r, o);

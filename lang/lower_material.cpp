@@ -62,7 +62,7 @@ TexturePtr lower_checker(const Expr& expr, BlockContext& ctx) {
     if (!r.ok()) return nullptr;
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Checker;
-    r.apply(&t->spec);
+    r.apply(t->spec);
     read_colors(r, t->spec);
     t->span = head_span(expr);
     t->chain = ctx.chain;
@@ -85,7 +85,7 @@ TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
                 r.fail(r.value_span("scale"), "perlin 'scale' " + *problem);
         }
     }
-    r.apply(&t->spec);
+    r.apply(t->spec);
     read_colors(r, t->spec);
     if (!r.ok()) return nullptr;
     t->span = head_span(expr);
@@ -122,7 +122,7 @@ MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
         m->bump = base->bump;
     }
     render::MaterialSpec& s = m->spec;
-    r.apply(&s);
+    r.apply(s);
     if (const Value* tex = r.value("texture")) m->texture = tex->texture();
     if (const Value* bump = r.value("bump")) {
         if (bump->texture()->spec.kind != render::TextureKind::Perlin) {

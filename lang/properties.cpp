@@ -350,7 +350,7 @@ std::string_view BlockReader::word(std::string_view name, std::string_view fallb
     return v ? std::string_view(v->string()) : fallback;
 }
 
-void BlockReader::apply(void* spec) const {
+void BlockReader::apply_fields(void* spec) const {
     for (size_t i = 0; i < slots_.size(); ++i) {
         const Slot& s = slots_[i];
         const render::Field* f = table_.properties[i].field;

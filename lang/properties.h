@@ -4,6 +4,7 @@
 // (scale, rotate, translate) are collected in the order written.
 #pragma once
 
+#include <cassert>
 #include <functional>
 #include <glm/glm.hpp>
 #include <optional>
@@ -83,7 +84,11 @@ public:
 
     // Writes every valid property that sets a render field with access into `spec`, the spec
     // struct of the table's element (render::Settings for "settings", ...).
-    void apply(void* spec) const;
+    template <class Spec>
+    void apply(Spec& spec) const {
+        assert(render::is_spec_of<Spec>(table_.element));
+        apply_fields(&spec);
+    }
     // The value span of every present property that sets a render field.
     std::vector<FieldSpan> field_spans() const;
 
@@ -105,6 +110,7 @@ private:
         std::vector<Value> values;
     };
     const Slot* slot(std::string_view name) const;
+    void apply_fields(void* spec) const;
     void read_item(const Item& item);
     void read_transform(const Item& item);
     bool check_count(const Property& p, const Item& item);

@@ -5,10 +5,12 @@
 // value out of range are written here once.
 #pragma once
 
+#include <cassert>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "render/limits.h"
@@ -107,6 +109,18 @@ struct ElementTable {
 };
 
 const ElementTable& element_table(Element element);
+
+// Whether Spec is the struct that the access of `element`'s fields reads and writes.
+template <class Spec>
+constexpr bool is_spec_of(Element e) {
+    if constexpr (std::is_same_v<Spec, Settings>) return e == Element::Settings;
+    if constexpr (std::is_same_v<Spec, CameraSpec>) return e == Element::Camera;
+    if constexpr (std::is_same_v<Spec, LightSpec>) return e == Element::PointLight || e == Element::AreaLight;
+    if constexpr (std::is_same_v<Spec, ShapeSpec>) return e >= Element::Sphere && e <= Element::Mesh;
+    if constexpr (std::is_same_v<Spec, MaterialSpec>) return e == Element::Material;
+    if constexpr (std::is_same_v<Spec, TextureSpec>) return e >= Element::Checker && e <= Element::Image;
+    return false;
+}
 Element element_of(const LightSpec& light);
 Element element_of(const ShapeSpec& shape);
 Element element_of(const TextureSpec& texture);
@@ -137,5 +151,11 @@ std::optional<std::string> perlin_scale_problem(const Vec3& scale);
 // `item`, `index`, `tag` and the field's name) per field out of range. False if any.
 bool check_fields(const ElementTable& table, const void* spec, SpecItem item, size_t index, uint32_t tag,
                   std::vector<SpecError>& errors);
+template <class Spec>
+bool check_fields(const ElementTable& table, const Spec& spec, SpecItem item, size_t index, uint32_t tag,
+                  std::vector<SpecError>& errors) {
+    assert(is_spec_of<Spec>(table.element));
+    return check_fields(table, static_cast<const void*>(&spec), item, index, tag, errors);
+}
 
 }  // namespace wsd::render

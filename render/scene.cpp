@@ -16,7 +16,7 @@ namespace {
 
 bool check_settings(const Settings& s, std::vector<SpecError>& errors) {
     const ElementTable& table = element_table(Element::Settings);
-    if (!check_fields(table, &s, SpecItem::Settings, 0, 0, errors)) return false;
+    if (!check_fields(table, s, SpecItem::Settings, 0, 0, errors)) return false;
     if (auto problem = image_size_problem(s.width, s.height)) {
         errors.push_back({SpecItem::Settings, 0, 0, *problem, -1, "height"});
         return false;
@@ -25,7 +25,7 @@ bool check_settings(const Settings& s, std::vector<SpecError>& errors) {
 }
 
 bool check_material(const MaterialSpec& m, size_t index, std::vector<SpecError>& errors) {
-    if (!check_fields(element_table(Element::Material), &m, SpecItem::Material, index, m.tag, errors))
+    if (!check_fields(element_table(Element::Material), m, SpecItem::Material, index, m.tag, errors))
         return false;
     if (auto problem = reflection_transmission_problem(m.reflection, m.transmission)) {
         errors.push_back({SpecItem::Material, index, m.tag, *problem, -1, "transmission"});
@@ -37,7 +37,7 @@ bool check_material(const MaterialSpec& m, size_t index, std::vector<SpecError>&
 // A texture's own fields; the colours of checker and perlin against their shared field.
 bool check_texture(const TextureSpec& t, size_t material, std::vector<SpecError>& errors) {
     const ElementTable& table = element_table(element_of(t));
-    bool ok = check_fields(table, &t, SpecItem::Texture, material, t.tag, errors);
+    bool ok = check_fields(table, t, SpecItem::Texture, material, t.tag, errors);
     if (const Field* colors = table.find("colors")) {
         for (const Vec3& c : {t.color1, t.color2}) {
             if (auto problem = vec3_problem(*colors, c)) {
@@ -57,7 +57,7 @@ bool check_texture(const TextureSpec& t, size_t material, std::vector<SpecError>
 }
 
 bool check_light(const LightSpec& l, size_t index, std::vector<SpecError>& errors) {
-    if (!check_fields(element_table(element_of(l)), &l, SpecItem::Light, index, l.tag, errors)) return false;
+    if (!check_fields(element_table(element_of(l)), l, SpecItem::Light, index, l.tag, errors)) return false;
     if (auto problem = light_radiance_problem(l.color, l.intensity)) {
         errors.push_back({SpecItem::Light, index, l.tag, *problem, -1, "intensity"});
         return false;
@@ -79,7 +79,7 @@ bool check_light(const LightSpec& l, size_t index, std::vector<SpecError>& error
 // (degenerate faces, singular transforms, the primitive limit) are Geometry::build's.
 bool check_shape(const ShapeSpec& s, size_t index, std::vector<SpecError>& errors) {
     const ElementTable& table = element_table(element_of(s));
-    bool ok = check_fields(table, &s, SpecItem::Shape, index, s.tag, errors);
+    bool ok = check_fields(table, s, SpecItem::Shape, index, s.tag, errors);
     if (s.kind == ShapeKind::Triangle) {
         for (const Vec3& v : s.v) {
             if (auto problem = vec3_problem(*table.find("vertices"), v)) {
@@ -184,7 +184,7 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     scene->settings_ = spec.settings;
 
     // The camera's frame needs the image size: only once the settings are valid.
-    if (check_fields(element_table(Element::Camera), &spec.camera, SpecItem::Camera, 0, spec.camera.tag,
+    if (check_fields(element_table(Element::Camera), spec.camera, SpecItem::Camera, 0, spec.camera.tag,
                      errors) &&
         settings_ok) {
         std::string message;
