@@ -64,6 +64,7 @@ TexturePtr lower_checker(const Expr& expr, BlockContext& ctx) {
     t->spec.kind = render::TextureKind::Checker;
     r.apply(t->spec);
     read_colors(r, t->spec);
+    t->fields = r.field_spans();
     t->span = head_span(expr);
     t->chain = ctx.chain;
     return t;
@@ -88,6 +89,7 @@ TexturePtr lower_perlin(const Expr& expr, BlockContext& ctx) {
     r.apply(t->spec);
     read_colors(r, t->spec);
     if (!r.ok()) return nullptr;
+    t->fields = r.field_spans();
     t->span = head_span(expr);
     t->chain = ctx.chain;
     return t;
@@ -151,6 +153,7 @@ MaterialPtr lower_material(const Expr& expr, BlockContext& ctx) {
         r.failed();
     }
     if (!r.ok()) return nullptr;
+    m->fields = r.field_spans();
     if (m->texture)
         s.texture = m->texture->spec;
     else

@@ -32,16 +32,6 @@ struct Property {
     const std::vector<std::string_view>& words() const;
 };
 
-// Where a property's value was written, by the render field it sets: errors that build_scene
-// reports about a field are shown at its value. Kept small (one per written field of every
-// object): the value is in the file of its block's keyword.
-struct FieldSpan {
-    uint32_t begin, end;      // the value's bytes
-    render::Element element;  // the field: element_table(element).fields[field]
-    uint8_t field;
-    const render::Field& table_field() const { return render::element_table(element).fields[field]; }
-};
-
 struct BlockTable {
     std::string what;         // "sphere", "light area", "material": used in messages
     render::Element element;  // the render element whose table this is generated from

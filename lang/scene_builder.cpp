@@ -47,14 +47,14 @@ void SceneBuilder::add_light(const Lowered<render::LightSpec>& light, Span keywo
 }
 
 uint32_t SceneBuilder::texture_tag(const TexturePtr& texture) {
-    return record(plain(texture->span, texture->chain));
+    return record(plain(texture->span, texture->chain), texture->fields);
 }
 
 uint32_t SceneBuilder::material_index(const MaterialPtr& material) {
     auto it = material_ids_.find(material.get());
     if (it != material_ids_.end()) return it->second;
     render::MaterialSpec spec = material->spec;
-    spec.tag = record(plain(material->span, material->chain));
+    spec.tag = record(plain(material->span, material->chain), material->fields);
     if (spec.texture && material->texture) spec.texture->tag = texture_tag(material->texture);
     if (spec.bump && material->bump) spec.bump->tag = texture_tag(material->bump);
     uint32_t index = static_cast<uint32_t>(scene_.spec.materials.size());

@@ -540,6 +540,24 @@ TEST_CASE("SpecErrors about a field are shown at its value, or at the element wh
     CHECK(where(e->sources, diags.all()[4].span) == "3:1");   // color not written: the light
     CHECK(diags.all()[0].message == "bad radius");
     CHECK(where(e->sources, diags.all()[5].span) == "1:39");  // the look_at value
+
+    // Materials and textures: their own values; one inherited from `base` is shown at the
+    // material.
+    e = evaluate_text(std::string(kCamera) +
+                      "let b = material { reflection 0.5 }\n"
+                      "sphere { center <0, 0, 0> radius 1 material material { base b  transmission 0.5  "
+                      "texture checker { scale 2 } } }\n");
+    REQUIRE(e->errors().empty());
+    const auto& material = e->scene.spec.materials[0];
+    diags = Diagnostics{};
+    report_spec_errors({SpecError{SpecItem::Material, 0, material.tag, "m", -1, "transmission"},
+                        SpecError{SpecItem::Material, 0, material.tag, "m", -1, "reflection"},
+                        SpecError{SpecItem::Texture, 0, material.texture->tag, "t", -1, "scale"}},
+                       e->scene, e->sources, diags);
+    REQUIRE(diags.all().size() == 3);
+    CHECK(where(e->sources, diags.all()[0].span) == "3:77");   // the transmission value
+    CHECK(where(e->sources, diags.all()[1].span) == "3:45");   // the material
+    CHECK(where(e->sources, diags.all()[2].span) == "3:106");  // the checker's scale value
 }
 
 TEST_CASE("SpecErrors in an included file carry the include chain", "[lower][spec-errors]") {
