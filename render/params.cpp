@@ -108,226 +108,245 @@ std::vector<Field> light_fields(bool area) {
     return f;
 }
 
+ElementTable settings_table() {
+    return {
+        Element::Settings,
+        "settings",
+        {{"width", FieldType::Integer, between(1, kMaxImageSide), "image width in pixels",
+          number_member<&Settings::width>()},
+         {"height", FieldType::Integer, between(1, kMaxImageSide), "image height in pixels",
+          number_member<&Settings::height>()},
+         {"supersamples", FieldType::Integer, between(1, kMaxSupersamples), "rays per pixel",
+          number_member<&Settings::supersamples>()},
+         {"adaptive_supersampling",
+          FieldType::Bool,
+          {},
+          "the full grid only where a pixel differs from its neighbours",
+          number_member<&Settings::adaptive_supersampling>()},
+         {"aa_threshold", FieldType::Number, at_least(0),
+          "the largest per-channel difference that counts as equal",
+          number_member<&Settings::aa_threshold>()},
+         {"bailout", FieldType::Number, Range{0, 1, false, true},
+          "a secondary ray whose weight is below this is not traced", number_member<&Settings::bailout>()},
+         {"max_depth", FieldType::Integer, between(0, kMaxDepth), "reflection and refraction recursion limit",
+          number_member<&Settings::max_depth>()},
+         {"ambient", FieldType::Number, at_least(0), "ambient term: surface colour x ambient",
+          number_member<&Settings::ambient>()},
+         {"background",
+          FieldType::Colour,
+          {},
+          "colour of rays that miss",
+          vec3_member<&Settings::background>()},
+         {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed", number_member<&Settings::seed>()}},
+        &kDefaultSettings};
+}
+
+ElementTable camera_table() {
+    return {Element::Camera,
+            "camera",
+            {{"position",
+              FieldType::Vector3,
+              {},
+              "eye point",
+              vec3_member<&CameraSpec::position>(),
+              {},
+              "required"},
+             {"look_at",
+              FieldType::Vector3,
+              {},
+              "point in the centre of the image",
+              vec3_member<&CameraSpec::look_at>(),
+              {},
+              "required"},
+             {"up",
+              FieldType::Vector3,
+              {},
+              "must not be parallel to look_at - position",
+              vec3_member<&CameraSpec::up>()},
+             {"fov", FieldType::Number, Range{0, 180, true, true}, "vertical field of view in degrees",
+              number_member<&CameraSpec::fov_degrees>()}},
+            &kDefaultCamera};
+}
+
+ElementTable point_light_table() {
+    return {Element::PointLight, "light point", light_fields(false), &kDefaultLight};
+}
+
+ElementTable area_light_table() {
+    return {Element::AreaLight, "light area", light_fields(true), &kDefaultLight};
+}
+
+ElementTable sphere_table() {
+    return {Element::Sphere,
+            "sphere",
+            {{"center", FieldType::Vector3, {}, "centre", vec3_member<&ShapeSpec::center>(), {}, "required"},
+             {"radius",
+              FieldType::Number,
+              above(0),
+              "radius",
+              number_member<&ShapeSpec::radius>(),
+              {},
+              "required"},
+             kMaterialField},
+            &kDefaultShape};
+}
+
+ElementTable box_table() {
+    return {
+        Element::Box,
+        "box",
+        {{"min", FieldType::Vector3, {}, "lowest corner", vec3_member<&ShapeSpec::box_min>(), {}, "required"},
+         {"max",
+          FieldType::Vector3,
+          {},
+          "highest corner (above min on every axis)",
+          vec3_member<&ShapeSpec::box_max>(),
+          {},
+          "required"},
+         kMaterialField},
+        &kDefaultShape};
+}
+
+ElementTable triangle_table() {
+    return {
+        Element::Triangle,
+        "triangle",
+        {{"vertices", FieldType::Vector3, {}, "the three corners, written first", {}, {}, "required"},
+         {"uv", FieldType::Vector2, {}, "texture coordinates of the three corners", {}, {}, "barycentric"},
+         kMaterialField},
+        &kDefaultShape};
+}
+
+ElementTable plane_table() {
+    return {Element::Plane,
+            "plane",
+            {{"normal",
+              FieldType::Vector3,
+              {},
+              "normal (non-zero; normalized)",
+              vec3_member<&ShapeSpec::normal>(),
+              {},
+              "required"},
+             {"distance",
+              FieldType::Number,
+              {},
+              "the plane is normal . p = distance",
+              number_member<&ShapeSpec::distance>()},
+             {"uv_scale", FieldType::Number, above(0), "the texture repeats every uv_scale units",
+              number_member<&ShapeSpec::uv_scale>()},
+             kMaterialField},
+            &kDefaultShape};
+}
+
+ElementTable mesh_table() {
+    return {Element::Mesh,
+            "mesh",
+            {{"file", FieldType::String, {}, "an OBJ file (or vertices and faces)", {}, {}, "—"},
+             {"vertices", FieldType::List, {}, "vector3 positions", {}, {}, "—"},
+             {"faces", FieldType::List, {}, "vector3 of vertex indices", {}, {}, "—"},
+             {"uvs", FieldType::List, {}, "one vector2 per vertex", {}, {}, "—"},
+             {"normals", FieldType::List, {}, "one vector3 per vertex: smooth shading", {}, {}, "—"},
+             kMaterialField},
+            &kDefaultShape};
+}
+
+ElementTable material_table() {
+    return {
+        Element::Material,
+        "material",
+        {{"color", FieldType::Colour, {}, "surface colour (linear)", vec3_member<&MaterialSpec::color>()},
+         {"texture", FieldType::Texture, {}, "surface colour from a texture instead of color", {}, {}, "—"},
+         {"ambient",
+          FieldType::Number,
+          at_least(0),
+          "per-material ambient override",
+          material_ambient(),
+          {},
+          "settings.ambient"},
+         {"diffuse", FieldType::Number, at_least(0), "diffuse weight (Lambert)",
+          number_member<&MaterialSpec::diffuse>()},
+         {"specular", FieldType::Number, at_least(0), "Phong specular weight",
+          number_member<&MaterialSpec::specular>()},
+         {"shininess", FieldType::Number, above(0), "Phong exponent",
+          number_member<&MaterialSpec::shininess>()},
+         {"reflection", FieldType::Number, between(0, 1), "mirror reflection weight",
+          number_member<&MaterialSpec::reflection>()},
+         {"transmission", FieldType::Number, between(0, 1), "refraction weight",
+          number_member<&MaterialSpec::transmission>()},
+         {"ior", FieldType::Number, above(0), "index of refraction", number_member<&MaterialSpec::ior>()},
+         {"absorption",
+          FieldType::Colour,
+          {},
+          "absorption per unit length inside",
+          vec3_member<&MaterialSpec::absorption>()},
+         {"bump", FieldType::Texture, {}, "Perlin normal perturbation", {}, {}, "—"},
+         {"bump_strength", FieldType::Number, at_least(0), "how far the normal is bent",
+          number_member<&MaterialSpec::bump_strength>()}},
+        &kDefaultMaterial};
+}
+
+ElementTable checker_table() {
+    return {Element::Checker,
+            "checker",
+            {{"scale", FieldType::Number, above(0), "the side of one square",
+              number_member<&TextureSpec::checker_scale>()},
+             kColorsField},
+            &kDefaultTexture};
+}
+
+ElementTable perlin_table() {
+    return {
+        Element::Perlin,
+        "perlin",
+        {{"kind",
+          FieldType::Word,
+          {},
+          "the noise function",
+          {},
+          {"noise", "turbulence", "marble", "wood"},
+          "noise"},
+         {"scale", FieldType::NumberOrVector3, {}, "frequencies a, b, c (>= 0, not all zero)", {}, {}, "1"},
+         {"octaves", FieldType::Integer, between(1, kMaxOctaves), "turbulence terms L",
+          number_member<&TextureSpec::octaves>()},
+         kColorsField},
+        &kDefaultTexture};
+}
+
+ElementTable image_table() {
+    return {Element::Image,
+            "image",
+            {{"file", FieldType::String, {}, "PNG, JPEG, BMP, TGA or HDR file", {}, {}, "required"}},
+            &kDefaultTexture};
+}
+
 ElementTable make_table(Element e) {
     switch (e) {
         case Element::Settings:
-            return {e,
-                    "settings",
-                    {{"width", FieldType::Integer, between(1, kMaxImageSide), "image width in pixels",
-                      number_member<&Settings::width>()},
-                     {"height", FieldType::Integer, between(1, kMaxImageSide), "image height in pixels",
-                      number_member<&Settings::height>()},
-                     {"supersamples", FieldType::Integer, between(1, kMaxSupersamples), "rays per pixel",
-                      number_member<&Settings::supersamples>()},
-                     {"adaptive_supersampling",
-                      FieldType::Bool,
-                      {},
-                      "the full grid only where a pixel differs from its neighbours",
-                      number_member<&Settings::adaptive_supersampling>()},
-                     {"aa_threshold", FieldType::Number, at_least(0),
-                      "the largest per-channel difference that counts as equal",
-                      number_member<&Settings::aa_threshold>()},
-                     {"bailout", FieldType::Number, Range{0, 1, false, true},
-                      "a secondary ray whose weight is below this is not traced",
-                      number_member<&Settings::bailout>()},
-                     {"max_depth", FieldType::Integer, between(0, kMaxDepth),
-                      "reflection and refraction recursion limit", number_member<&Settings::max_depth>()},
-                     {"ambient", FieldType::Number, at_least(0), "ambient term: surface colour x ambient",
-                      number_member<&Settings::ambient>()},
-                     {"background",
-                      FieldType::Colour,
-                      {},
-                      "colour of rays that miss",
-                      vec3_member<&Settings::background>()},
-                     {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed",
-                      number_member<&Settings::seed>()}},
-                    &kDefaultSettings};
+            return settings_table();
         case Element::Camera:
-            return {e,
-                    "camera",
-                    {{"position",
-                      FieldType::Vector3,
-                      {},
-                      "eye point",
-                      vec3_member<&CameraSpec::position>(),
-                      {},
-                      "required"},
-                     {"look_at",
-                      FieldType::Vector3,
-                      {},
-                      "point in the centre of the image",
-                      vec3_member<&CameraSpec::look_at>(),
-                      {},
-                      "required"},
-                     {"up",
-                      FieldType::Vector3,
-                      {},
-                      "must not be parallel to look_at - position",
-                      vec3_member<&CameraSpec::up>()},
-                     {"fov", FieldType::Number, Range{0, 180, true, true},
-                      "vertical field of view in degrees", number_member<&CameraSpec::fov_degrees>()}},
-                    &kDefaultCamera};
+            return camera_table();
         case Element::PointLight:
-            return {e, "light point", light_fields(false), &kDefaultLight};
+            return point_light_table();
         case Element::AreaLight:
-            return {e, "light area", light_fields(true), &kDefaultLight};
+            return area_light_table();
         case Element::Sphere:
-            return {e,
-                    "sphere",
-                    {{"center",
-                      FieldType::Vector3,
-                      {},
-                      "centre",
-                      vec3_member<&ShapeSpec::center>(),
-                      {},
-                      "required"},
-                     {"radius",
-                      FieldType::Number,
-                      above(0),
-                      "radius",
-                      number_member<&ShapeSpec::radius>(),
-                      {},
-                      "required"},
-                     kMaterialField},
-                    &kDefaultShape};
+            return sphere_table();
         case Element::Box:
-            return {e,
-                    "box",
-                    {{"min",
-                      FieldType::Vector3,
-                      {},
-                      "lowest corner",
-                      vec3_member<&ShapeSpec::box_min>(),
-                      {},
-                      "required"},
-                     {"max",
-                      FieldType::Vector3,
-                      {},
-                      "highest corner (above min on every axis)",
-                      vec3_member<&ShapeSpec::box_max>(),
-                      {},
-                      "required"},
-                     kMaterialField},
-                    &kDefaultShape};
+            return box_table();
         case Element::Triangle:
-            return {
-                e,
-                "triangle",
-                {{"vertices", FieldType::Vector3, {}, "the three corners, written first", {}, {}, "required"},
-                 {"uv",
-                  FieldType::Vector2,
-                  {},
-                  "texture coordinates of the three corners",
-                  {},
-                  {},
-                  "barycentric"},
-                 kMaterialField},
-                &kDefaultShape};
+            return triangle_table();
         case Element::Plane:
-            return {e,
-                    "plane",
-                    {{"normal",
-                      FieldType::Vector3,
-                      {},
-                      "normal (non-zero; normalized)",
-                      vec3_member<&ShapeSpec::normal>(),
-                      {},
-                      "required"},
-                     {"distance",
-                      FieldType::Number,
-                      {},
-                      "the plane is normal . p = distance",
-                      number_member<&ShapeSpec::distance>()},
-                     {"uv_scale", FieldType::Number, above(0), "the texture repeats every uv_scale units",
-                      number_member<&ShapeSpec::uv_scale>()},
-                     kMaterialField},
-                    &kDefaultShape};
+            return plane_table();
         case Element::Mesh:
-            return {e,
-                    "mesh",
-                    {{"file", FieldType::String, {}, "an OBJ file (or vertices and faces)", {}, {}, "—"},
-                     {"vertices", FieldType::List, {}, "vector3 positions", {}, {}, "—"},
-                     {"faces", FieldType::List, {}, "vector3 of vertex indices", {}, {}, "—"},
-                     {"uvs", FieldType::List, {}, "one vector2 per vertex", {}, {}, "—"},
-                     {"normals", FieldType::List, {}, "one vector3 per vertex: smooth shading", {}, {}, "—"},
-                     kMaterialField},
-                    &kDefaultShape};
+            return mesh_table();
         case Element::Material:
-            return {e,
-                    "material",
-                    {{"color",
-                      FieldType::Colour,
-                      {},
-                      "surface colour (linear)",
-                      vec3_member<&MaterialSpec::color>()},
-                     {"texture",
-                      FieldType::Texture,
-                      {},
-                      "surface colour from a texture instead of color",
-                      {},
-                      {},
-                      "—"},
-                     {"ambient",
-                      FieldType::Number,
-                      at_least(0),
-                      "per-material ambient override",
-                      material_ambient(),
-                      {},
-                      "settings.ambient"},
-                     {"diffuse", FieldType::Number, at_least(0), "diffuse weight (Lambert)",
-                      number_member<&MaterialSpec::diffuse>()},
-                     {"specular", FieldType::Number, at_least(0), "Phong specular weight",
-                      number_member<&MaterialSpec::specular>()},
-                     {"shininess", FieldType::Number, above(0), "Phong exponent",
-                      number_member<&MaterialSpec::shininess>()},
-                     {"reflection", FieldType::Number, between(0, 1), "mirror reflection weight",
-                      number_member<&MaterialSpec::reflection>()},
-                     {"transmission", FieldType::Number, between(0, 1), "refraction weight",
-                      number_member<&MaterialSpec::transmission>()},
-                     {"ior", FieldType::Number, above(0), "index of refraction",
-                      number_member<&MaterialSpec::ior>()},
-                     {"absorption",
-                      FieldType::Colour,
-                      {},
-                      "absorption per unit length inside",
-                      vec3_member<&MaterialSpec::absorption>()},
-                     {"bump", FieldType::Texture, {}, "Perlin normal perturbation", {}, {}, "—"},
-                     {"bump_strength", FieldType::Number, at_least(0), "how far the normal is bent",
-                      number_member<&MaterialSpec::bump_strength>()}},
-                    &kDefaultMaterial};
+            return material_table();
         case Element::Checker:
-            return {e,
-                    "checker",
-                    {{"scale", FieldType::Number, above(0), "the side of one square",
-                      number_member<&TextureSpec::checker_scale>()},
-                     kColorsField},
-                    &kDefaultTexture};
+            return checker_table();
         case Element::Perlin:
-            return {e,
-                    "perlin",
-                    {{"kind",
-                      FieldType::Word,
-                      {},
-                      "the noise function",
-                      {},
-                      {"noise", "turbulence", "marble", "wood"},
-                      "noise"},
-                     {"scale",
-                      FieldType::NumberOrVector3,
-                      {},
-                      "frequencies a, b, c (>= 0, not all zero)",
-                      {},
-                      {},
-                      "1"},
-                     {"octaves", FieldType::Integer, between(1, kMaxOctaves), "turbulence terms L",
-                      number_member<&TextureSpec::octaves>()},
-                     kColorsField},
-                    &kDefaultTexture};
+            return perlin_table();
         case Element::Image:
-            return {e,
-                    "image",
-                    {{"file", FieldType::String, {}, "PNG, JPEG, BMP, TGA or HDR file", {}, {}, "required"}},
-                    &kDefaultTexture};
+            return image_table();
     }
     return {e, "", {}, nullptr};
 }
