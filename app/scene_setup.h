@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lang/load.h"
+#include "render/limits.h"
 #include "render/scene_spec.h"
 
 namespace wsd::app {
@@ -25,11 +26,11 @@ struct SceneOverrides {
 };
 
 // Limits of the values the overrides accept (wsd-language.md §4); usage errors beyond them.
-constexpr int max_image_side = 100000;
-constexpr long long max_image_pixels = 1ll << 28;
-constexpr int max_supersamples = 4096;
-constexpr int max_depth_limit = 256;
-constexpr int max_light_grid_side = 256;  // N×N ≤ 65,536
+constexpr int max_image_side = render::kMaxImageSide;
+constexpr long long max_image_pixels = render::kMaxPixels;
+constexpr int max_supersamples = render::kMaxSupersamples;
+constexpr int max_depth_limit = render::kMaxDepth;
+constexpr int max_light_grid_side = render::kMaxSquareLightGridSide;  // N×N grids
 
 // What every command that loads scenes (check, render, bench) takes from the command line.
 struct SceneInputArgs {

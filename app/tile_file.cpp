@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/io_util.h"
+#include "render/limits.h"
 
 namespace wsd::app {
 
@@ -187,8 +188,8 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
         return false;
     }
     int w = 0, h = 0;
-    if (!header_token(bytes, pos, w_token) || !parse_int(w_token, 1, 100000, w) ||
-        !header_token(bytes, pos, h_token) || !parse_int(h_token, 1, 100000, h)) {
+    if (!header_token(bytes, pos, w_token) || !parse_int(w_token, 1, render::kMaxImageSide, w) ||
+        !header_token(bytes, pos, h_token) || !parse_int(h_token, 1, render::kMaxImageSide, h)) {
         error = "malformed PFM header (bad width or height)";
         return false;
     }

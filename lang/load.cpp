@@ -1,6 +1,6 @@
 // load_scene: the whole front end — parse, evaluate (which lowers each block as it runs), check
-// for a camera, apply the command line's adjustments, build the render scene and map its errors
-// back to spans — stopping after any stage that reported errors.
+// for a camera (and warn about a scene without lights), apply the command line's adjustments, build the
+// render scene and map its errors back to spans — stopping after any stage that reported errors.
 #include "lang/load.h"
 
 #include <chrono>
@@ -64,6 +64,12 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         if (!loaded.scene && diags.error_count() == errors_before)
             diags.error(Span{file, 0, 0}, "the scene could not be built");
         if (diags.error_count() > errors_before) return std::nullopt;
+    }
+    if (!options.fragment && lowered.spec.lights.empty()) {
+        // Not an error: an ambient-only scene is valid, but it is rarely what was meant.
+        const Span at = lowered.has_camera ? lowered.spans[lowered.spec.camera.tag].span : Span{file, 0, 0};
+        Diagnostic& d = diags.warning(at, "no lights: only ambient light");
+        d.help.push_back("add a light, e.g. 'light point { position <0, 10, -10> }'");
     }
     loaded.spec = std::move(lowered.spec);
     return loaded;

@@ -11,94 +11,62 @@ namespace wsd::lang {
 
 namespace {
 
-const Property kMaterialProperty{"material", PropType::Material};
+std::string quoted(std::string_view s) {
+    return std::string(1, '\'').append(s).append(1, '\'');
+}
+
+// A block's table as the render element table gives it: every field a property of that name,
+// taking one value.
+BlockTable generated(render::Element element, bool transforms = false) {
+    const render::ElementTable& t = render::element_table(element);
+    BlockTable b{std::string(t.name), element, {}, transforms};
+    for (const render::Field& f : t.fields) b.properties.push_back({f.name, f.type, 1, 1, &f});
+    return b;
+}
+
+// What the language adds to a field: the name it is written under and its number of values.
+void written_as(BlockTable& b, std::string_view field, std::string_view name, int min_values,
+                int max_values) {
+    for (Property& p : b.properties) {
+        if (p.field && p.field->name == field) {
+            p.name = name;
+            p.min_values = min_values;
+            p.max_values = max_values;
+        }
+    }
+}
 
 std::map<std::string_view, BlockTable> make_tables() {
+    using render::Element;
     std::map<std::string_view, BlockTable> t;
-    t["settings"] = {"settings",
-                     {{"width", PropType::Integer, between(1, 100000)},
-                      {"height", PropType::Integer, between(1, 100000)},
-                      {"supersamples", PropType::Integer, between(1, 4096)},
-                      {"adaptive_supersampling", PropType::Bool},
-                      {"aa_threshold", PropType::Number, at_least(0)},
-                      {"bailout", PropType::Number, Range{0, 1, false, true}},
-                      {"max_depth", PropType::Integer, between(0, 256)},
-                      {"ambient", PropType::Number, at_least(0)},
-                      {"background", PropType::Colour},
-                      {"seed", PropType::Integer, between(0, 4294967295.0)}}};
-    t["camera"] = {"camera",
-                   {{"position", PropType::Vector3},
-                    {"look_at", PropType::Vector3},
-                    {"up", PropType::Vector3},
-                    {"fov", PropType::Number, Range{0, 180, true, true}}}};
-    std::vector<Property> light = {{"position", PropType::Vector3},
-                                   {"color", PropType::Colour},
-                                   {"intensity", PropType::Number, at_least(0)}};
-    t["light point"] = {"light point", light};
-    for (std::string_view area_only : {"u", "v", "samples", "sampling", "adaptive"})
-        t["light point"].hints.emplace_back(
-            area_only, "'" + std::string(area_only) + "' belongs to area lights: write 'light area { ... }'");
-    light.push_back({"u", PropType::Vector3});
-    light.push_back({"v", PropType::Vector3});
-    light.push_back({"samples", PropType::Integer, between(1, 1024), 1, 2});
-    light.push_back({"sampling", PropType::Word, {}, 1, 1, {"jittered", "uniform"}});
-    light.push_back({"adaptive", PropType::Bool});
-    t["light area"] = {"light area", light};
-    t["sphere"] = {"sphere",
-                   {{"center", PropType::Vector3}, {"radius", PropType::Number, above(0)}, kMaterialProperty},
-                   true};
-    t["box"] = {"box", {{"min", PropType::Vector3}, {"max", PropType::Vector3}, kMaterialProperty}, true};
-    t["triangle"] = {
-        "triangle",
-        {{"", PropType::Vector3, {}, 3, 3}, {"uv", PropType::Vector2, {}, 3, 3}, kMaterialProperty},
-        true};
-    t["plane"] = {"plane",
-                  {{"normal", PropType::Vector3},
-                   {"distance", PropType::Number},
-                   {"uv_scale", PropType::Number, above(0)},
-                   kMaterialProperty},
-                  true};
-    t["mesh"] = {"mesh",
-                 {{"file", PropType::String},
-                  {"vertices", PropType::List},
-                  {"faces", PropType::List},
-                  {"uvs", PropType::List},
-                  {"normals", PropType::List},
-                  kMaterialProperty},
-                 true};
-    t["material"] = {"material",
-                     {{"base", PropType::Material},
-                      {"color", PropType::Colour},
-                      {"texture", PropType::Texture},
-                      {"ambient", PropType::Number, at_least(0)},
-                      {"diffuse", PropType::Number, at_least(0)},
-                      {"specular", PropType::Number, at_least(0)},
-                      {"shininess", PropType::Number, above(0)},
-                      {"reflection", PropType::Number, between(0, 1)},
-                      {"transmission", PropType::Number, between(0, 1)},
-                      {"ior", PropType::Number, above(0)},
-                      {"absorption", PropType::Colour},
-                      {"bump", PropType::Texture},
-                      {"bump_strength", PropType::Number, at_least(0)}}};
-    t["checker"] = {"checker",
-                    {{"scale", PropType::Number, above(0)}, {"colors", PropType::Colour, {}, 2, 2}}};
-    t["perlin"] = {"perlin",
-                   {{"kind", PropType::Word, {}, 1, 1, {"noise", "turbulence", "marble", "wood"}},
-                    {"scale", PropType::NumberOrVector3},
-                    {"octaves", PropType::Integer, between(1, 64)},
-                    {"colors", PropType::Colour, {}, 2, 2}}};
+    t["settings"] = generated(Element::Settings);
+    t["camera"] = generated(Element::Camera);
+    t["light area"] = generated(Element::AreaLight);
+    written_as(t["light area"], "samples", "samples", 1, 2);
+    t["light point"] = generated(Element::PointLight);
+    for (const Property& p : t["light area"].properties)
+        if (!t["light point"].find(p.name))
+            t["light point"].hints.emplace_back(
+                p.name, quoted(p.name).append(" belongs to area lights: write 'light area { ... }'"));
+    t["sphere"] = generated(Element::Sphere, true);
+    t["box"] = generated(Element::Box, true);
+    t["triangle"] = generated(Element::Triangle, true);
+    written_as(t["triangle"], "vertices", "", 3, 3);
+    written_as(t["triangle"], "uv", "uv", 3, 3);
+    t["plane"] = generated(Element::Plane, true);
+    t["mesh"] = generated(Element::Mesh, true);
+    t["material"] = generated(Element::Material);
+    // `base` is the language's own: a copy of another material value, applied first.
+    t["material"].properties.insert(t["material"].properties.begin(), {"base", render::FieldType::Material});
+    t["checker"] = generated(Element::Checker);
+    written_as(t["checker"], "colors", "colors", 2, 2);
+    t["perlin"] = generated(Element::Perlin);
+    written_as(t["perlin"], "colors", "colors", 2, 2);
     return t;
 }
 
-constexpr double kMaxPixels = 268435456.0;  // 2^28
-constexpr int kMaxLightSamples = 65536;
-
-// Two directions are treated as parallel when the sine of their angle is below this: the frame
-// built from them would be dominated by rounding.
-constexpr double kParallelSine = 1e-9;
-
 bool parallel(glm::dvec3 a, glm::dvec3 b) {
-    return glm::length(glm::cross(a, b)) <= kParallelSine * glm::length(a) * glm::length(b);
+    return glm::length(glm::cross(a, b)) <= render::kParallelSine * glm::length(a) * glm::length(b);
 }
 
 // sin and cos of an angle in degrees, exact at multiples of 90° so that quarter turns map axes
@@ -141,7 +109,8 @@ render::Mat4 from_rows(const double (&m)[3][3]) {
 
 std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
     if (const Value* m = r.value("material")) return m->material();
-    if (r.has("material")) return std::nullopt;  // present but failed: already reported
+    // Present but failed, or meant by a misspelt name: already reported.
+    if (r.has("material") || r.suggested("material")) return std::nullopt;
     std::optional<MaterialPtr> fallback = ctx.default_material(r.keyword());
     if (!fallback) return std::nullopt;
     if (!*fallback) {
@@ -156,15 +125,11 @@ void lower_sphere(BlockReader& r, LoweredObject& o) {
     r.require("center");
     r.require("radius");
     o.shape.kind = render::ShapeKind::Sphere;
-    o.shape.center = r.vec3("center", o.shape.center);
-    o.shape.radius = r.number("radius", o.shape.radius);
 }
 
 void lower_box(BlockReader& r, LoweredObject& o) {
     bool ok = r.require("min") & r.require("max");
     o.shape.kind = render::ShapeKind::Box;
-    o.shape.box_min = r.vec3("min", o.shape.box_min);
-    o.shape.box_max = r.vec3("max", o.shape.box_max);
     if (ok && r.ok()) {
         glm::dvec3 lo = o.shape.box_min, hi = o.shape.box_max;
         if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
@@ -189,9 +154,6 @@ void lower_triangle(BlockReader& r, LoweredObject& o) {
 void lower_plane(BlockReader& r, LoweredObject& o) {
     r.require("normal");
     o.shape.kind = render::ShapeKind::Plane;
-    o.shape.normal = r.vec3("normal", o.shape.normal);
-    o.shape.distance = r.number("distance", o.shape.distance);
-    o.shape.uv_scale = r.number("uv_scale", o.shape.uv_scale);
     if (r.value("normal") && o.shape.normal == glm::dvec3(0.0))
         r.fail(r.value_span("normal"), "plane 'normal' must not be the zero vector");
 }
@@ -252,39 +214,28 @@ render::Mat4 compose_transforms(const std::vector<Transform>& transforms) {
     return m;
 }
 
-std::optional<render::Settings> lower_settings(const ObjectStmt& stmt, BlockContext& ctx) {
+std::optional<Lowered<render::Settings>> lower_settings(const ObjectStmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table("settings"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     render::Settings s;
-    s.width = static_cast<int>(r.integer("width", s.width));
-    s.height = static_cast<int>(r.integer("height", s.height));
-    s.supersamples = static_cast<int>(r.integer("supersamples", s.supersamples));
-    s.adaptive_supersampling = r.boolean("adaptive_supersampling", s.adaptive_supersampling);
-    s.aa_threshold = r.number("aa_threshold", s.aa_threshold);
-    s.bailout = r.number("bailout", s.bailout);
-    s.max_depth = static_cast<int>(r.integer("max_depth", s.max_depth));
-    s.ambient = r.number("ambient", s.ambient);
-    s.background = r.vec3("background", s.background);
-    s.seed = static_cast<uint32_t>(r.integer("seed", s.seed));
-    if (r.ok() && static_cast<double>(s.width) * s.height > kMaxPixels) {
-        std::string later =
-            !r.has("height") || (r.has("width") && written_after(r, "width", "height")) ? "width" : "height";
-        r.fail(r.value_span(later), "image size " + std::to_string(s.width) + " x " +
-                                        std::to_string(s.height) +
-                                        " exceeds the limit of 268435456 pixels (2^28)");
+    r.apply(s);
+    if (r.ok()) {
+        if (auto problem = render::image_size_problem(s.width, s.height)) {
+            std::string later = !r.has("height") || (r.has("width") && written_after(r, "width", "height"))
+                                    ? "width"
+                                    : "height";
+            r.fail(r.value_span(later), *problem);
+        }
     }
     if (!r.ok()) return std::nullopt;
-    return s;
+    return Lowered<render::Settings>{s, r.field_spans()};
 }
 
-std::optional<render::CameraSpec> lower_camera(const ObjectStmt& stmt, BlockContext& ctx) {
+std::optional<Lowered<render::CameraSpec>> lower_camera(const ObjectStmt& stmt, BlockContext& ctx) {
     BlockReader r(block_table("camera"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     r.require("position");
     r.require("look_at");
     render::CameraSpec c;
-    c.position = r.vec3("position", c.position);
-    c.look_at = r.vec3("look_at", c.look_at);
-    c.up = r.vec3("up", c.up);
-    c.fov_degrees = r.number("fov", c.fov_degrees);
+    r.apply(c);
     if (!r.ok()) return std::nullopt;
     glm::dvec3 forward = c.look_at - c.position;
     if (forward == glm::dvec3(0.0)) {
@@ -300,10 +251,10 @@ std::optional<render::CameraSpec> lower_camera(const ObjectStmt& stmt, BlockCont
                    "look_at - position");
     }
     if (!r.ok()) return std::nullopt;
-    return c;
+    return Lowered<render::CameraSpec>{c, r.field_spans()};
 }
 
-std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContext& ctx) {
+std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, BlockContext& ctx) {
     render::LightSpec l;
     if (stmt.name == "area") {
         l.kind = render::LightKind::Area;
@@ -320,14 +271,14 @@ std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContex
     BlockReader r(block_table(area ? "light area" : "light point"), stmt.block, stmt.keyword, ctx.diags,
                   ctx.eval);
     r.require("position");
-    l.position = r.vec3("position", l.position);
-    l.color = r.vec3("color", l.color);
-    l.intensity = r.number("intensity", l.intensity);
+    r.apply(l);
+    if (r.ok()) {
+        if (auto problem = render::light_radiance_problem(l.color, l.intensity))
+            r.fail(r.value_span(r.has("intensity") ? "intensity" : "color"), *problem);
+    }
     if (area) {
         r.require("u");
         r.require("v");
-        l.u = r.vec3("u", l.u);
-        l.v = r.vec3("v", l.v);
         const std::vector<Value>& samples = r.values("samples");
         if (!samples.empty()) {
             l.samples_u = static_cast<int>(samples[0].number());
@@ -335,7 +286,6 @@ std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContex
         }
         l.sampling = r.word("sampling", "jittered") == "uniform" ? render::LightSampling::Uniform
                                                                  : render::LightSampling::Jittered;
-        l.adaptive = r.boolean("adaptive", l.adaptive);
         if (r.ok()) {
             if (l.u == glm::dvec3(0.0))
                 r.fail(r.value_span("u"), "area light edge 'u' must not be the zero vector");
@@ -344,14 +294,12 @@ std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContex
             else if (parallel(l.u, l.v))
                 r.fail(r.value_span(written_after(r, "u", "v") ? "u" : "v"),
                        "area light edges 'u' and 'v' are parallel");
-            if (static_cast<long long>(l.samples_u) * l.samples_v > kMaxLightSamples)
-                r.fail(r.value_span("samples"), "area light has " + std::to_string(l.samples_u) + " x " +
-                                                    std::to_string(l.samples_v) +
-                                                    " samples, more than the limit of 65536");
+            if (auto problem = render::light_grid_problem(l.samples_u, l.samples_v))
+                r.fail(r.value_span("samples"), *problem);
         }
     }
     if (!r.ok()) return std::nullopt;
-    return l;
+    return Lowered<render::LightSpec>{l, r.field_spans()};
 }
 
 std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx) {
@@ -378,6 +326,7 @@ std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& 
     BlockReader r(block_table(what), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
     LoweredObject o;
     o.record.span = stmt.keyword;
+    r.apply(o.shape);
     switch (stmt.block_kind) {
         case BlockKind::Sphere:
             lower_sphere(r, o);
@@ -400,6 +349,7 @@ std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& 
     if (!r.ok()) return std::nullopt;
     o.material = *material;
     o.shape.object_to_world = compose_transforms(r.transforms());
+    o.fields = r.field_spans();
     return o;
 }
 

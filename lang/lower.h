@@ -1,6 +1,7 @@
 // Lowering: blocks (settings, camera, lights, objects, materials, textures) → render::SceneSpec
-// elements, each checked against its property table, and the SceneBuilder that assembles them
-// with a span table, so that errors found later by render::build_scene map back to the source.
+// elements, each checked against its property table (generated from the render element tables of
+// render/params.h), and the SceneBuilder that assembles them with a span table, so that errors
+// found later by render::build_scene map back to the element, the value or the face they concern.
 #pragma once
 
 #include <functional>
@@ -32,7 +33,15 @@ struct SpanRecord {
     Span span;                               // the element's keyword, or an image's/OBJ file's path string
     IncludeChain chain;                      // the includes that led to the file of `span`
     std::shared_ptr<const FaceSpans> faces;  // inline meshes
-    bool obj = false;                        // a mesh whose faces come from the OBJ file named at `span`
+    // The values written in the element: LoweredScene::field_spans[fields_begin, fields_end).
+    uint32_t fields_begin = 0, fields_end = 0;
+};
+
+// A lowered settings, camera or light block: the spec element and where its values were written.
+template <class Spec>
+struct Lowered {
+    Spec spec;
+    std::vector<FieldSpan> fields;
 };
 
 using ObjCache = std::map<std::string, std::shared_ptr<const render::MeshData>>;
@@ -54,11 +63,12 @@ struct LoweredObject {
     size_t primitives = 1;  // 1, or a mesh's triangles
     bool is_triangle = false;
     SpanRecord record;
+    std::vector<FieldSpan> fields;
 };
 
-std::optional<render::Settings> lower_settings(const ObjectStmt& stmt, BlockContext& ctx);
-std::optional<render::CameraSpec> lower_camera(const ObjectStmt& stmt, BlockContext& ctx);
-std::optional<render::LightSpec> lower_light(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<Lowered<render::Settings>> lower_settings(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<Lowered<render::CameraSpec>> lower_camera(const ObjectStmt& stmt, BlockContext& ctx);
+std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, BlockContext& ctx);
 std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx);
 // ExprKind::Material / Image, Checker, Perlin; null after reporting an error.
 MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx);
@@ -78,12 +88,14 @@ std::string resolve_path(const SourceManager& sources, uint32_t file, const std:
 std::string canonical_path(const std::string& path);
 
 // The property tables, by block: "settings", "camera", "light point", "light area", "sphere",
-// "box", "triangle", "plane", "mesh", "material", "checker", "perlin".
+// "box", "triangle", "plane", "mesh", "material", "checker", "perlin"; each generated from the
+// render element table of the same name.
 const BlockTable& block_table(std::string_view what);
 
 struct LoweredScene {
     render::SceneSpec spec;
-    std::vector<SpanRecord> spans;  // indexed by every tag; spans[0] is the main file's start
+    std::vector<SpanRecord> spans;       // indexed by every tag; spans[0] is the main file's start
+    std::vector<FieldSpan> field_spans;  // SpanRecord::fields_begin/end index this
     uint32_t settings_tag = 0;
     bool has_camera = false;
     CheckSummary summary;
@@ -95,16 +107,16 @@ public:
     explicit SceneBuilder(uint32_t main_file = 0);
 
     // The interpreter rejects a second settings or camera before lowering it.
-    void set_settings(const render::Settings& settings, Span keyword, IncludeChain chain);
-    void set_camera(render::CameraSpec camera, Span keyword, IncludeChain chain);
-    void add_light(render::LightSpec light, Span keyword, IncludeChain chain);
+    void set_settings(const Lowered<render::Settings>& settings, Span keyword, IncludeChain chain);
+    void set_camera(const Lowered<render::CameraSpec>& camera, Span keyword, IncludeChain chain);
+    void add_light(const Lowered<render::LightSpec>& light, Span keyword, IncludeChain chain);
     void add_object(LoweredObject&& object, IncludeChain chain);
     size_t primitives() const { return primitives_; }
     const render::SceneSpec& spec() const { return scene_.spec; }
     LoweredScene finish();
 
 private:
-    uint32_t record(SpanRecord r);
+    uint32_t record(SpanRecord r, const std::vector<FieldSpan>& fields = {});
     uint32_t material_index(const MaterialPtr& material);
     uint32_t texture_tag(const TexturePtr& texture);
 
@@ -114,8 +126,9 @@ private:
     size_t primitives_ = 0;
 };
 
-// Each SpecError from render::build_scene as an error at its element's span (a mesh face's own
-// span when known), with the include-chain notes of the file it is in.
+// Each SpecError from render::build_scene as an error at the value of the field it concerns when
+// that was written, else at a mesh face's own span when known, else at its element's span; with
+// the include-chain notes of the file it is in.
 void report_spec_errors(const std::vector<render::SpecError>& errors, const LoweredScene& scene,
                         const SourceManager& sources, Diagnostics& diags);
 

@@ -61,8 +61,9 @@ TexturePtr lower_checker(const BlockExpr& expr, BlockContext& ctx) {
     if (!r.ok()) return nullptr;
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Checker;
-    t->spec.checker_scale = r.number("scale", t->spec.checker_scale);
+    r.apply(t->spec);
     read_colors(r, t->spec);
+    t->fields = r.field_spans();
     t->span = head_span(expr);
     t->chain = ctx.chain;
     return t;
@@ -79,16 +80,15 @@ TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
                 r.fail(r.value_span("scale"), "perlin 'scale' must be > 0, found " + describe(*scale));
             t->spec.perlin_scale = glm::dvec3(scale->number());
         } else {
-            glm::dvec3 v = scale->vec3();
-            if (v.x < 0 || v.y < 0 || v.z < 0 || v == glm::dvec3(0.0))
-                r.fail(r.value_span("scale"),
-                       "perlin 'scale' must have components >= 0, not all zero, found " + describe(*scale));
-            t->spec.perlin_scale = v;
+            t->spec.perlin_scale = scale->vec3();
+            if (auto problem = render::perlin_scale_problem(t->spec.perlin_scale))
+                r.fail(r.value_span("scale"), "perlin 'scale' " + *problem);
         }
     }
-    t->spec.octaves = static_cast<int>(r.integer("octaves", t->spec.octaves));
+    r.apply(t->spec);
     read_colors(r, t->spec);
     if (!r.ok()) return nullptr;
+    t->fields = r.field_spans();
     t->span = head_span(expr);
     t->chain = ctx.chain;
     return t;
@@ -122,17 +122,8 @@ MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
         m->bump = base->bump;
     }
     render::MaterialSpec& s = m->spec;
-    s.color = r.vec3("color", s.color);
+    r.apply(s);
     if (const Value* tex = r.value("texture")) m->texture = tex->texture();
-    if (r.value("ambient")) s.ambient = r.number("ambient", 0);
-    s.diffuse = r.number("diffuse", s.diffuse);
-    s.specular = r.number("specular", s.specular);
-    s.shininess = r.number("shininess", s.shininess);
-    s.reflection = r.number("reflection", s.reflection);
-    s.transmission = r.number("transmission", s.transmission);
-    s.ior = r.number("ior", s.ior);
-    s.absorption = r.vec3("absorption", s.absorption);
-    s.bump_strength = r.number("bump_strength", s.bump_strength);
     if (const Value* bump = r.value("bump")) {
         if (bump->texture()->spec.kind != render::TextureKind::Perlin) {
             const char* kind =
@@ -142,16 +133,16 @@ MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
         }
         m->bump = bump->texture();
     }
-    if (r.ok() && s.reflection + s.transmission > 1) {
+    std::optional<std::string> sum_problem;
+    if (r.ok()) sum_problem = render::reflection_transmission_problem(s.reflection, s.transmission);
+    if (sum_problem) {
         // At the later of the two as written; a value inherited from `base` counts as earlier.
         bool has_r = r.has("reflection"), has_t = r.has("transmission");
         std::string later = has_r && (!has_t || written_after(r, "reflection", "transmission"))
                                 ? "reflection"
                                 : "transmission";
         std::string other = later == "reflection" ? "transmission" : "reflection";
-        Diagnostic& d = ctx.diags.error(
-            r.value_span(later), "'reflection' + 'transmission' must not exceed 1, found " +
-                                     format_number(s.reflection) + " + " + format_number(s.transmission));
+        Diagnostic& d = ctx.diags.error(r.value_span(later), *sum_problem);
         Span other_span = r.has(other) ? r.value_span(other) : r.value_span("base");
         d.notes.push_back(
             {other_span, "'" + other + "' is " +
@@ -160,6 +151,7 @@ MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
         r.failed();
     }
     if (!r.ok()) return nullptr;
+    m->fields = r.field_spans();
     if (m->texture)
         s.texture = m->texture->spec;
     else

@@ -11,14 +11,21 @@ namespace wsd::lang {
 
 namespace {
 
-constexpr size_t kMaxPrimitives = size_t(1) << 24;
-
 bool fits_float(double x) {
-    return std::fabs(x) <= FLT_MAX;
+    return std::fabs(x) <= render::kMaxSingle;
 }
 
 std::string vertex_count_text(size_t n) {
     return std::to_string(n) + (n == 1 ? " vertex" : " vertices");
+}
+
+std::string element_count_text(size_t n) {
+    return std::to_string(n) + (n == 1 ? " element" : " elements");
+}
+
+std::string too_many_faces(size_t n) {
+    return std::to_string(n) + " faces, more than the limit of " + std::to_string(render::kMaxPrimitives) +
+           " primitives";
 }
 
 // A list of vector3 as floats (vertices or normals); false after reporting the first bad element.
@@ -95,8 +102,8 @@ bool read_faces(BlockReader& r, BlockContext& ctx, const ListValue& list, size_t
 
 bool check_per_vertex(BlockReader& r, const char* name, size_t n, size_t vertex_count) {
     if (n == vertex_count) return true;
-    r.fail(r.value_span(name), std::string(1, '\'').append(name) + "' has " + std::to_string(n) +
-                                   " elements, but the mesh has " + vertex_count_text(vertex_count) +
+    r.fail(r.value_span(name), std::string(1, '\'').append(name) + "' has " + element_count_text(n) +
+                                   ", but the mesh has " + vertex_count_text(vertex_count) +
                                    " (one per vertex)");
     return false;
 }
@@ -112,9 +119,8 @@ bool lower_inline(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         r.fail(r.value_span("faces"), "'faces' is empty");
         return false;
     }
-    if (faces.size() > kMaxPrimitives) {
-        r.fail(r.value_span("faces"), "mesh has " + std::to_string(faces.size()) +
-                                          " faces, more than the limit of 16777216 primitives");
+    if (faces.size() > render::kMaxPrimitives) {
+        r.fail(r.value_span("faces"), "mesh has " + too_many_faces(faces.size()));
         return false;
     }
     auto mesh = std::make_shared<render::MeshData>();
@@ -188,13 +194,11 @@ bool lower_file(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         r.fail(at, "mesh file '" + path + "' has no faces");
         return false;
     }
-    if (mesh->faces.size() > kMaxPrimitives) {
-        r.fail(at, "mesh file '" + path + "' has " + std::to_string(mesh->faces.size()) +
-                       " faces, more than the limit of 16777216 primitives");
+    if (mesh->faces.size() > render::kMaxPrimitives) {
+        r.fail(at, "mesh file '" + path + "' has " + too_many_faces(mesh->faces.size()));
         return false;
     }
     o.record.span = at;
-    o.record.obj = true;
     o.primitives = mesh->faces.size();
     o.shape.mesh = std::move(mesh);
     return true;
@@ -213,6 +217,10 @@ bool lower_mesh(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         return lower_file(r, ctx, o);
     }
     if (!r.has("vertices") && !r.has("faces")) {
+        if (r.suggested("file") || r.suggested("vertices") || r.suggested("faces")) {
+            r.failed();  // a misspelt name already reported
+            return false;
+        }
         r.fail(r.keyword(), "missing property 'file' (or 'vertices' and 'faces') in mesh");
         return false;
     }

@@ -10,9 +10,6 @@ namespace wsd::lang {
 
 namespace {
 
-constexpr double kMinScale = 1e-12;
-constexpr double kMaxScale = 1e12;
-
 std::string quoted(std::string_view s) {
     std::string out(1, '\'');
     out.append(s);
@@ -89,16 +86,30 @@ bool type_matches(PropType t, const Value& v) {
 
 const std::vector<std::string_view> kTransformNames = {"scale", "rotate", "translate"};
 
+// POV-Ray's words for what wsd spells otherwise, answered wherever they are written as a property.
+const std::pair<std::string_view, std::string_view> kPovRayWords[] = {
+    {"pigment",
+     "wsd has no 'pigment': write 'material { color <r, g, b> }' (or a 'texture' in the material)"},
+    {"finish", "wsd has no 'finish': write ambient, diffuse, specular, reflection ... in 'material { ... }'"},
+    {"light_source", "a light is a statement of its own: 'light point { position ... }'"},
+    {"location", "a camera's eye point is its 'position'"},
+    {"angle", "a camera's field of view is 'fov' (vertical, in degrees)"},
+};
+
+// Help for a name that belongs in an object's material.
+std::optional<std::string> material_hint(std::string_view name) {
+    if (name == "color" || name == "colour")
+        return std::string("a colour belongs in a material: write 'material { color ... }'");
+    if (name == "texture")
+        return std::string("a texture belongs in a material: write 'material { texture ... }'");
+    return std::nullopt;
+}
+
 }  // namespace
 
-std::string Range::describe() const {
-    bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-    if (has_lo && has_hi)
-        return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) +
-               (hi_open ? ")" : "]");
-    if (has_lo) return std::string(lo_open ? "> " : ">= ") + format_number(lo);
-    if (has_hi) return std::string(hi_open ? "< " : "<= ") + format_number(hi);
-    return "finite";
+const std::vector<std::string_view>& Property::words() const {
+    static const std::vector<std::string_view> none;
+    return field ? field->words : none;
 }
 
 const Property* BlockTable::find(std::string_view name) const {
@@ -157,7 +168,15 @@ void BlockReader::read_item(const Item& item) {
             }
         }
         std::string match = hinted ? "" : closest_match(item.name, candidates);
-        if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
+        if (!match.empty()) {
+            d.help.push_back("did you mean '" + match + "'?");
+            suggested_.push_back(match);
+        }
+        for (const auto& [word, hint] : kPovRayWords)
+            if (word == item.name) d.help.emplace_back(hint);
+        if (table_.transforms && table_.find("material")) {
+            if (auto hint = material_hint(item.name)) d.help.push_back(*hint);
+        }
         ok_ = false;
         return;
     }
@@ -213,11 +232,11 @@ std::optional<Value> BlockReader::read_value(const Property& p, const Expr& expr
         // Enumerated values are bare words: read the identifier's name, never evaluate it.
         const std::string_view word = expr.kind == ExprKind::Ident ? expr.as<IdentExpr>().name : "";
         if (expr.kind != ExprKind::Ident ||
-            std::find(p.words.begin(), p.words.end(), word) == p.words.end()) {
+            std::find(p.words().begin(), p.words().end(), word) == p.words().end()) {
             Diagnostic& d =
-                diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words));
+                diags_.error(expr.span, quoted(p.name) + " must be one of " + join_words(p.words()));
             if (expr.kind == ExprKind::Ident) {
-                std::vector<std::string> candidates(p.words.begin(), p.words.end());
+                std::vector<std::string> candidates(p.words().begin(), p.words().end());
                 std::string match = closest_match(word, candidates);
                 if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
             }
@@ -238,31 +257,15 @@ bool BlockReader::check_value(const Property& p, const Value& v, const Expr& exp
                      name() + " must be " + expected_type(p.type) + ", found " + type_name(v.type()));
         return false;
     }
-    if (p.type == PropType::Integer) {
-        double x = v.number();
-        bool integral = x == std::floor(x);
-        if (!integral || !p.range.contains(x)) {
-            std::string range = p.range.unbounded() ? ""
-                                                    : " from " + format_number(p.range.lo) + " to " +
-                                                          format_number(p.range.hi);
-            diags_.error(expr.span, name() + " must be an integer" + range + ", found " + format_number(x));
-            return false;
-        }
-        return true;
-    }
-    if (p.type == PropType::Number && !p.range.contains(v.number())) {
-        diags_.error(expr.span,
-                     name() + " must be " + p.range.describe() + ", found " + format_number(v.number()));
-        return false;
-    }
-    if (p.type == PropType::Colour) {
-        glm::dvec3 c = v.vec3();
-        if (c.x < 0 || c.y < 0 || c.z < 0) {
-            diags_.error(expr.span, name() + " must have components >= 0, found " + describe(v));
-            return false;
-        }
-    }
-    return true;
+    if (!p.field) return true;
+    std::optional<std::string> problem;
+    if (v.is(ValueType::Number) && (p.type == PropType::Number || p.type == PropType::Integer))
+        problem = render::number_problem(*p.field, v.number());
+    else if (v.is(ValueType::Vector3))
+        problem = render::vec3_problem(*p.field, v.vec3());
+    if (!problem) return true;
+    diags_.error(expr.span, name() + " " + *problem);
+    return false;
 }
 
 void BlockReader::read_transform(const Item& item) {
@@ -287,7 +290,7 @@ void BlockReader::read_transform(const Item& item) {
         t.v = v->is(ValueType::Number) ? glm::dvec3(v->number()) : v->vec3();
         for (int i = 0; i < 3; ++i) {
             double m = std::fabs(t.v[i]);
-            if (m < kMinScale || m > kMaxScale) {
+            if (m < render::kMinScale || m > render::kMaxScale) {
                 fail(expr.span,
                      "'scale' factors must have a magnitude in [1e-12, 1e12], found " + describe(*v));
                 return;
@@ -348,8 +351,41 @@ std::string_view BlockReader::word(std::string_view name, std::string_view fallb
     return v ? std::string_view(v->string()) : fallback;
 }
 
+void BlockReader::apply_fields(void* spec) const {
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        const Slot& s = slots_[i];
+        const render::Field* f = table_.properties[i].field;
+        if (!s.valid || s.values.empty() || !f) continue;
+        const Value& v = s.values[0];
+        if (f->access.set_number && v.is(ValueType::Number)) f->access.set_number(spec, v.number());
+        if (f->access.set_number && v.is(ValueType::Bool)) f->access.set_number(spec, v.boolean() ? 1 : 0);
+        if (f->access.set_vec3 && v.is(ValueType::Vector3)) f->access.set_vec3(spec, v.vec3());
+    }
+}
+
+std::vector<FieldSpan> BlockReader::field_spans() const {
+    std::vector<FieldSpan> out;
+    out.reserve(slots_.size());
+    const render::Field* first = render::element_table(table_.element).fields.data();
+    for (size_t i = 0; i < slots_.size(); ++i) {
+        const render::Field* f = table_.properties[i].field;
+        if (!slots_[i].item || !f) continue;
+        const Span at = value_span(table_.properties[i].name);
+        out.push_back({at.begin, at.end, table_.element, static_cast<uint8_t>(f - first)});
+    }
+    return out;
+}
+
+bool BlockReader::suggested(std::string_view name) const {
+    return std::find(suggested_.begin(), suggested_.end(), name) != suggested_.end();
+}
+
 bool BlockReader::require(std::string_view name) {
     if (has(name)) return true;
+    if (suggested(name)) {
+        ok_ = false;  // the unknown name that meant it is already reported
+        return false;
+    }
     if (name.empty())
         fail(keyword_, table_.what + " needs its three vertices first");
     else

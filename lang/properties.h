@@ -4,9 +4,9 @@
 // (scale, rotate, translate) are collected in the order written.
 #pragma once
 
+#include <cassert>
 #include <functional>
 #include <glm/glm.hpp>
-#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,53 +15,26 @@
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
 #include "lang/value.h"
+#include "render/params.h"
 
 namespace wsd::lang {
 
-enum class PropType {
-    Number,
-    Integer,  // a number with an integral value
-    Bool,
-    String,
-    Vector2,
-    Vector3,
-    Colour,  // a vector3 with components >= 0
-    Material,
-    Texture,
-    List,
-    Word,  // a bare identifier from `words`, read without evaluating it
-    NumberOrVector3,
-};
+// The types and ranges of properties are the render tables' (render/params.h).
+using PropType = render::FieldType;
 
-struct Range {
-    double lo = -std::numeric_limits<double>::infinity();
-    double hi = std::numeric_limits<double>::infinity();
-    bool lo_open = false, hi_open = false;
-    bool contains(double x) const { return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi); }
-    bool unbounded() const { return lo == -hi && hi == std::numeric_limits<double>::infinity(); }
-    std::string describe() const;  // "> 0", "in [0, 1)", ">= 0"
-};
-
-constexpr Range at_least(double lo) {
-    return Range{lo, std::numeric_limits<double>::infinity(), false, false};
-}
-constexpr Range above(double lo) {
-    return Range{lo, std::numeric_limits<double>::infinity(), true, false};
-}
-constexpr Range between(double lo, double hi) {
-    return Range{lo, hi, false, false};
-}
-
+// A property as the language reads it: the render field it sets, plus the facts only the
+// language has (the name it is written under, how many values it takes).
 struct Property {
     std::string_view name;  // "" is a triangle's leading vertices
     PropType type;
-    Range range = {};
     int min_values = 1, max_values = 1;
-    std::vector<std::string_view> words = {};  // Word
+    const render::Field* field = nullptr;  // null for language-only properties (`base`, transforms)
+    const std::vector<std::string_view>& words() const;
 };
 
 struct BlockTable {
-    std::string what;  // "sphere", "light area", "material": used in messages
+    std::string what;         // "sphere", "light area", "material": used in messages
+    render::Element element;  // the render element whose table this is generated from
     std::vector<Property> properties;
     bool transforms = false;  // accepts scale / rotate / translate
     // Help for names that are unknown here but mean something elsewhere (`samples` in a point light).
@@ -99,8 +72,20 @@ public:
     glm::dvec3 vec3(std::string_view name, glm::dvec3 fallback) const;
     std::string_view word(std::string_view name, std::string_view fallback) const;
 
-    // Reports "missing property" at the keyword unless present (or present but failed).
+    // Writes every valid property that sets a render field with access into `spec`, the spec
+    // struct of the table's element (render::Settings for "settings", ...).
+    template <class Spec>
+    void apply(Spec& spec) const {
+        assert(render::is_spec_of<Spec>(table_.element));
+        apply_fields(&spec);
+    }
+    // The value span of every present property that sets a render field.
+    std::vector<FieldSpan> field_spans() const;
+
+    // Reports "missing property" at the keyword unless present (or present but failed), or
+    // unless an unknown name in the block was already answered with "did you mean" it.
     bool require(std::string_view name);
+    bool suggested(std::string_view name) const;
     void fail(Span span, std::string message);  // report an error and mark the block failed
     void failed() { ok_ = false; }              // a problem already reported elsewhere
     const std::vector<Transform>& transforms() const { return transforms_; }
@@ -115,6 +100,7 @@ private:
         std::vector<Value> values;
     };
     const Slot* slot(std::string_view name) const;
+    void apply_fields(void* spec) const;
     void read_item(const Item& item);
     void read_transform(const Item& item);
     bool check_count(const Property& p, const Item& item);
@@ -127,6 +113,7 @@ private:
     const EvalFn& eval_;
     std::vector<Slot> slots_;  // parallel to table_.properties
     std::vector<Transform> transforms_;
+    std::vector<std::string> suggested_;  // names offered as "did you mean"
     bool ok_ = true;
 };
 

@@ -1,5 +1,6 @@
 // The SceneBuilder: assembles lowered elements into a render::SceneSpec as statements run, with
-// one span record per tag, and maps render::build_scene's SpecErrors back to those spans.
+// one span record per tag (and the value spans of its fields), and maps render::build_scene's
+// SpecErrors back to those spans by the element, field and face they name.
 #include "lang/lower.h"
 
 namespace wsd::lang {
@@ -20,37 +21,40 @@ SceneBuilder::SceneBuilder(uint32_t main_file) {
     scene_.spans.push_back(plain(Span{main_file, 0, 0}, nullptr));
 }
 
-uint32_t SceneBuilder::record(SpanRecord r) {
+uint32_t SceneBuilder::record(SpanRecord r, const std::vector<FieldSpan>& fields) {
+    r.fields_begin = static_cast<uint32_t>(scene_.field_spans.size());
+    scene_.field_spans.insert(scene_.field_spans.end(), fields.begin(), fields.end());
+    r.fields_end = static_cast<uint32_t>(scene_.field_spans.size());
     scene_.spans.push_back(std::move(r));
     return static_cast<uint32_t>(scene_.spans.size() - 1);
 }
 
-void SceneBuilder::set_settings(const render::Settings& settings, Span keyword, IncludeChain chain) {
-    scene_.spec.settings = settings;
-    scene_.settings_tag = record(plain(keyword, std::move(chain)));
+void SceneBuilder::set_settings(const Lowered<render::Settings>& settings, Span keyword, IncludeChain chain) {
+    scene_.spec.settings = settings.spec;
+    scene_.settings_tag = record(plain(keyword, std::move(chain)), settings.fields);
 }
 
-void SceneBuilder::set_camera(render::CameraSpec camera, Span keyword, IncludeChain chain) {
-    camera.tag = record(plain(keyword, std::move(chain)));
-    scene_.spec.camera = camera;
+void SceneBuilder::set_camera(const Lowered<render::CameraSpec>& camera, Span keyword, IncludeChain chain) {
+    scene_.spec.camera = camera.spec;
+    scene_.spec.camera.tag = record(plain(keyword, std::move(chain)), camera.fields);
     scene_.has_camera = true;
 }
 
-void SceneBuilder::add_light(render::LightSpec light, Span keyword, IncludeChain chain) {
-    light.tag = record(plain(keyword, std::move(chain)));
-    scene_.spec.lights.push_back(light);
+void SceneBuilder::add_light(const Lowered<render::LightSpec>& light, Span keyword, IncludeChain chain) {
+    scene_.spec.lights.push_back(light.spec);
+    scene_.spec.lights.back().tag = record(plain(keyword, std::move(chain)), light.fields);
     ++scene_.summary.lights;
 }
 
 uint32_t SceneBuilder::texture_tag(const TexturePtr& texture) {
-    return record(plain(texture->span, texture->chain));
+    return record(plain(texture->span, texture->chain), texture->fields);
 }
 
 uint32_t SceneBuilder::material_index(const MaterialPtr& material) {
     auto it = material_ids_.find(material.get());
     if (it != material_ids_.end()) return it->second;
     render::MaterialSpec spec = material->spec;
-    spec.tag = record(plain(material->span, material->chain));
+    spec.tag = record(plain(material->span, material->chain), material->fields);
     if (spec.texture && material->texture) spec.texture->tag = texture_tag(material->texture);
     if (spec.bump && material->bump) spec.bump->tag = texture_tag(material->bump);
     uint32_t index = static_cast<uint32_t>(scene_.spec.materials.size());
@@ -63,7 +67,7 @@ uint32_t SceneBuilder::material_index(const MaterialPtr& material) {
 void SceneBuilder::add_object(LoweredObject&& object, IncludeChain chain) {
     object.shape.material = material_index(object.material);
     object.record.chain = std::move(chain);
-    object.shape.tag = record(std::move(object.record));
+    object.shape.tag = record(std::move(object.record), object.fields);
     ++scene_.summary.objects;
     if (object.is_triangle) ++scene_.summary.triangles;
     if (object.shape.kind == render::ShapeKind::Mesh) scene_.summary.triangles += object.primitives;
@@ -82,32 +86,23 @@ LoweredScene SceneBuilder::finish() {
 
 namespace {
 
-bool mentions_face(const std::string& message) {
-    return message.find("face") != std::string::npos;
-}
-
-// Where to report a SpecError, and its message with the face and OBJ line when it concerns one.
-std::pair<Span, std::string> locate(const render::SpecError& e, const SpanRecord& rec,
-                                    const LoweredScene& scene, const SourceManager& sources) {
-    std::string message = e.message.empty() ? "invalid scene element" : e.message;
-    if (e.face < 0) return {rec.span, message};
+// Where to report a SpecError: the value of its field, else its face, else its element.
+Span locate(const render::SpecError& e, const SpanRecord& rec, const LoweredScene& scene,
+            const SourceManager& sources) {
+    if (!e.field.empty())
+        for (uint32_t i = rec.fields_begin; i < rec.fields_end; ++i)
+            if (scene.field_spans[i].table_field().name == e.field)
+                return Span{rec.span.file, scene.field_spans[i].begin, scene.field_spans[i].end};
+    if (e.face < 0 || !rec.faces) return rec.span;
     const size_t face = static_cast<size_t>(e.face);
-    std::string prefix = mentions_face(message) ? "" : "face " + std::to_string(face) + ": ";
-    if (rec.faces && face < rec.faces->offsets.size()) {
+    if (face < rec.faces->offsets.size()) {
         PackedVectors probe;
         probe.file = rec.faces->file;
         probe.offsets = {rec.faces->offsets[face]};
-        return {packed_element_span(probe, 0, sources), prefix + message};
+        return packed_element_span(probe, 0, sources);
     }
-    if (rec.faces && face < rec.faces->spans.size()) return {rec.faces->spans[face], prefix + message};
-    if (!prefix.empty() && rec.obj && e.item == render::SpecItem::Shape &&
-        e.index < scene.spec.shapes.size()) {
-        const auto& mesh = scene.spec.shapes[e.index].mesh;
-        if (mesh && face < mesh->face_lines.size())
-            prefix = "face " + std::to_string(face) + " (" + mesh->source_name + " line " +
-                     std::to_string(mesh->face_lines[face]) + "): ";
-    }
-    return {rec.span, prefix + message};
+    if (face < rec.faces->spans.size()) return rec.faces->spans[face];
+    return rec.span;
 }
 
 }  // namespace
@@ -118,7 +113,8 @@ void report_spec_errors(const std::vector<render::SpecError>& errors, const Lowe
         if (diags.too_many()) return;
         uint32_t tag = e.item == render::SpecItem::Settings ? scene.settings_tag : e.tag;
         const SpanRecord& rec = tag < scene.spans.size() ? scene.spans[tag] : scene.spans[0];
-        auto [span, message] = locate(e, rec, scene, sources);
+        const Span span = locate(e, rec, scene, sources);
+        const std::string message = e.message.empty() ? "invalid scene element" : e.message;
         std::vector<Span> chain;
         for (const IncludeSite* s = rec.chain.get(); s; s = s->parent.get()) chain.push_back(s->site);
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) diags.push_include(*it);

@@ -2,9 +2,9 @@
 // (the parser's numbers-plus-offsets storage of big vector lists).
 #include "lang/value.h"
 
-#include <charconv>
 #include <cmath>
-#include <cstdio>
+
+#include "render/params.h"
 
 namespace wsd::lang {
 
@@ -54,15 +54,7 @@ Value ListValue::at(size_t i, const SourceManager& sources) const {
 }
 
 std::string format_number(double x) {
-    if (std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 1e15) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.0f", x);
-        // %.0f prints -0 as "-0", which is what the value is.
-        return buf;
-    }
-    char buf[64];
-    auto result = std::to_chars(buf, buf + sizeof buf, x);
-    return std::string(buf, result.ptr);
+    return render::format_number(x);  // the renderer's messages print numbers the same way
 }
 
 std::string describe(const Value& v) {

@@ -12,6 +12,7 @@
 
 #include "lang/ast.h"
 #include "lang/source.h"
+#include "render/params.h"
 #include "render/scene_spec.h"
 
 namespace wsd::lang {
@@ -87,10 +88,21 @@ struct ListValue {
 // plain numeric literals, so the first '>' closes them).
 Span packed_element_span(const PackedVectors& packed, size_t i, const SourceManager& sources);
 
+// Where a property's value was written, by the render field it sets: errors that build_scene
+// reports about a field are shown at its value. Kept small (one per written field of every
+// object): the value is in the file of its block's keyword.
+struct FieldSpan {
+    uint32_t begin, end;      // the value's bytes
+    render::Element element;  // the field: element_table(element).fields[field]
+    uint8_t field;
+    const render::Field& table_field() const { return render::element_table(element).fields[field]; }
+};
+
 struct TextureValue {
     render::TextureSpec spec;
-    Span span;           // image: the path string; checker/perlin: the keyword
-    IncludeChain chain;  // where it was written
+    Span span;                      // image: the path string; checker/perlin: the keyword
+    IncludeChain chain;             // where it was written
+    std::vector<FieldSpan> fields;  // the values written in its block
 };
 
 struct MaterialValue {
@@ -98,6 +110,7 @@ struct MaterialValue {
     TexturePtr texture, bump;
     Span span;  // the `material {` that made it
     IncludeChain chain;
+    std::vector<FieldSpan> fields;  // the values written in its block (not those from `base`)
 };
 
 // Text for messages: numbers in shortest round-trip form (integers without exponent), vectors

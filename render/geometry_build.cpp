@@ -244,7 +244,8 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     for (size_t f = 0; f < m.faces.size(); ++f) {
         const glm::uvec3& face = m.faces[f];
         if (face.x >= nv || face.y >= nv || face.z >= nv) {
-            face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) + " vertices)");
+            face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
+                              (nv == 1 ? " vertex)" : " vertices)"));
             continue;
         }
         if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
@@ -267,7 +268,9 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
         add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
         g.tris.push_back(TriPrim{{i0, i1, i2}, next_prim - 1});
     }
-    if (more_errors > 0) error("mesh has " + std::to_string(more_errors) + " more invalid faces");
+    if (more_errors > 0)
+        error("mesh has " + std::to_string(more_errors) +
+              (more_errors == 1 ? " more invalid face" : " more invalid faces"));
     if (shape_errors > 0) {
         g.tris.resize(tri_base);
         return;

@@ -7,6 +7,7 @@
 
 #include "render/bvh.h"
 #include "render/geometry.h"
+#include "render/limits.h"
 #include "render/shapes.h"
 #include "render/transform.h"
 
@@ -17,7 +18,6 @@ enum class PrimKind : uint32_t { Triangle = 0, Sphere = 1, Box = 2 };
 inline constexpr uint32_t kTransmissiveBit = 1u << 31;
 inline constexpr uint32_t kKindShift = 29;
 inline constexpr uint32_t kSlotMask = (1u << 29) - 1;
-inline constexpr size_t kMaxPrimitives = size_t{1} << 24;
 
 inline uint32_t encode_entry(PrimKind kind, uint32_t slot, bool transmissive) {
     return (transmissive ? kTransmissiveBit : 0u) | (static_cast<uint32_t>(kind) << kKindShift) | slot;

@@ -21,12 +21,11 @@
 #include <memory>
 #include <vector>
 
+#include "render/limits.h"
+
 namespace wsd::render {
 
 namespace {
-
-// Large enough for every image width·height the settings allow (2^28).
-constexpr long kMaxPixels = 1L << 28;
 
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -145,7 +144,8 @@ bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, F
     if (p >= end || !std::isspace(static_cast<unsigned char>(*p)))
         return bad("no whitespace after the header");
     ++p;
-    if (w < 1 || h < 1 || w > 100000 || h > 100000 || w * h > kMaxPixels) return bad("bad image size");
+    if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxPixels)
+        return bad("bad image size");
     const size_t values = size_t(w) * size_t(h) * size_t(channels);
     if (size_t(end - p) < values * 4) return bad("the pixel data is shorter than the header says");
     const bool little = scale < 0;

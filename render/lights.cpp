@@ -25,13 +25,14 @@ std::optional<std::string> validate_light(const LightSpec& spec) {
     if (!(lu > 0)) return "area light edge u must be non-zero";
     if (!(lv > 0)) return "area light edge v must be non-zero";
     // Parallel edges: the sine of the angle between u and v (dimensionless) vanishes.
-    if (!(glm::length(glm::cross(spec.u / lu, spec.v / lv)) > 1e-9))
+    if (!(glm::length(glm::cross(spec.u / lu, spec.v / lv)) > kParallelSine))
         return "area light edges u and v must not be parallel";
     if (spec.samples_u < 1 || spec.samples_v < 1 || spec.samples_u > kMaxLightGridSide ||
         spec.samples_v > kMaxLightGridSide)
-        return "area light samples must be between 1 and 1024 in each direction";
+        return "area light samples must be between 1 and " + std::to_string(kMaxLightGridSide) +
+               " in each direction";
     if (long(spec.samples_u) * long(spec.samples_v) > kMaxLightSamples)
-        return "area light sample grid must have at most 65536 cells";
+        return "area light sample grid must have at most " + std::to_string(kMaxLightSamples) + " cells";
     return std::nullopt;
 }
 

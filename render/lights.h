@@ -5,12 +5,10 @@
 #include <optional>
 #include <string>
 
+#include "render/limits.h"
 #include "render/scene_spec.h"
 
 namespace wsd::render {
-
-inline constexpr int kMaxLightGridSide = 1024;
-inline constexpr int kMaxLightSamples = 65536;
 
 struct Light {
     bool area = false;

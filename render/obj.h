@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "render/limits.h"
 #include "render/scene_spec.h"
 
 namespace wsd::render {
@@ -21,7 +22,7 @@ struct ObjResult {
 };
 
 // The language's limit on a mesh's triangle count (wsd-language.md §5: 2^24 primitives).
-inline constexpr size_t kMaxObjTriangles = size_t{1} << 24;
+inline constexpr size_t kMaxObjTriangles = kMaxPrimitives;
 
 // load_obj reads the whole file (regular files only) and parses it; `path` names it in messages.
 // Indices may refer forward (checked once the file is read). MeshData has one uv and normal per

@@ -1,54 +1,95 @@
-// build_scene: validates the parts of a SceneSpec the renderer relies on (settings, camera,
-// lights, materials), builds the geometry and every texture (one ImageCache, so each image file
-// is read once), and reports each problem as a SpecError naming the list element and its tag.
+// build_scene: validates every element of a SceneSpec against its table (render/params.h) and the
+// rules that join fields, builds the geometry and every texture (one ImageCache, so each image
+// file is read once), and reports each problem as a SpecError naming the element, its tag and the
+// field it concerns.
 #include "render/scene.h"
 
 #include <chrono>
 #include <cmath>
 #include <limits>
 
+#include "render/params.h"
+
 namespace wsd::render {
 
 namespace {
 
-bool finite3(const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-bool non_negative3(const Vec3& v) {
-    return finite3(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
-}
-
-void check_settings(const Settings& s, std::vector<SpecError>& errors) {
-    auto fail = [&errors](const char* msg) { errors.push_back({SpecItem::Settings, 0, 0, msg, -1}); };
-    if (s.width < 1 || s.width > 100000 || s.height < 1 || s.height > 100000)
-        fail("width and height must be between 1 and 100000");
-    else if (long(s.width) * long(s.height) > (1L << 28))
-        fail("width × height must be at most 2^28 pixels");
-    if (s.supersamples < 1 || s.supersamples > 4096) fail("supersamples must be between 1 and 4096");
-    if (!(s.aa_threshold >= 0) || !std::isfinite(s.aa_threshold))
-        fail("aa_threshold must be a finite number >= 0");
-    if (!(s.bailout >= 0 && s.bailout < 1)) fail("bailout must be in [0, 1)");
-    if (s.max_depth < 0 || s.max_depth > 256) fail("max_depth must be between 0 and 256");
-    if (!(s.ambient >= 0) || !std::isfinite(s.ambient)) fail("ambient must be a finite number >= 0");
-    if (!finite3(s.background)) fail("background must be finite");
+bool check_settings(const Settings& s, std::vector<SpecError>& errors) {
+    const ElementTable& table = element_table(Element::Settings);
+    if (!check_fields(table, s, SpecItem::Settings, 0, 0, errors)) return false;
+    if (auto problem = image_size_problem(s.width, s.height)) {
+        errors.push_back({SpecItem::Settings, 0, 0, *problem, -1, "height"});
+        return false;
+    }
+    return true;
 }
 
-std::optional<std::string> check_material(const MaterialSpec& m) {
-    if (!non_negative3(m.color)) return "material color must be finite and non-negative";
-    if (m.ambient && !(*m.ambient >= 0 && std::isfinite(*m.ambient)))
-        return "material ambient must be a finite number >= 0";
-    if (!(m.diffuse >= 0) || !std::isfinite(m.diffuse)) return "diffuse must be a finite number >= 0";
-    if (!(m.specular >= 0) || !std::isfinite(m.specular)) return "specular must be a finite number >= 0";
-    if (!(m.shininess > 0) || !std::isfinite(m.shininess)) return "shininess must be a finite number > 0";
-    if (!(m.reflection >= 0 && m.reflection <= 1)) return "reflection must be in [0, 1]";
-    if (!(m.transmission >= 0 && m.transmission <= 1)) return "transmission must be in [0, 1]";
-    // Rounding slack for sums like 0.7 + 0.3 written by the user (a validation tolerance).
-    if (m.reflection + m.transmission > 1 + 1e-12) return "reflection + transmission must not exceed 1";
-    if (!(m.ior > 0) || !std::isfinite(m.ior)) return "ior must be a finite number > 0";
-    if (!non_negative3(m.absorption)) return "absorption must be finite and non-negative";
-    if (!(m.bump_strength >= 0) || !std::isfinite(m.bump_strength))
-        return "bump_strength must be a finite number >= 0";
-    return std::nullopt;
+bool check_material(const MaterialSpec& m, size_t index, std::vector<SpecError>& errors) {
+    if (!check_fields(element_table(Element::Material), m, SpecItem::Material, index, m.tag, errors))
+        return false;
+    if (auto problem = reflection_transmission_problem(m.reflection, m.transmission)) {
+        errors.push_back({SpecItem::Material, index, m.tag, *problem, -1, "transmission"});
+        return false;
+    }
+    return true;
+}
+
+// A texture's own fields; the colours of checker and perlin against their shared field.
+bool check_texture(const TextureSpec& t, size_t material, std::vector<SpecError>& errors) {
+    const ElementTable& table = element_table(element_of(t));
+    bool ok = check_fields(table, t, SpecItem::Texture, material, t.tag, errors);
+    if (const Field* colors = table.find("colors")) {
+        for (const Vec3& c : {t.color1, t.color2}) {
+            if (auto problem = vec3_problem(*colors, c)) {
+                errors.push_back({SpecItem::Texture, material, t.tag,
+                                  std::string(table.name) + " 'colors' " + *problem, -1, "colors"});
+                return false;
+            }
+        }
+    }
+    if (t.kind == TextureKind::Perlin) {
+        if (auto problem = perlin_scale_problem(t.perlin_scale)) {
+            errors.push_back({SpecItem::Texture, material, t.tag, "perlin 'scale' " + *problem, -1, "scale"});
+            return false;
+        }
+    }
+    return ok;
+}
+
+bool check_light(const LightSpec& l, size_t index, std::vector<SpecError>& errors) {
+    if (!check_fields(element_table(element_of(l)), l, SpecItem::Light, index, l.tag, errors)) return false;
+    if (auto problem = light_radiance_problem(l.color, l.intensity)) {
+        errors.push_back({SpecItem::Light, index, l.tag, *problem, -1, "intensity"});
+        return false;
+    }
+    if (l.kind == LightKind::Area) {
+        if (auto problem = light_grid_problem(l.samples_u, l.samples_v)) {
+            errors.push_back({SpecItem::Light, index, l.tag, *problem, -1, "samples"});
+            return false;
+        }
+    }
+    if (auto err = validate_light(l)) {
+        errors.push_back({SpecItem::Light, index, l.tag, *err, -1});
+        return false;
+    }
+    return true;
+}
+
+// The fields of a shape that its table checks, and a triangle's vertices; the geometric rules
+// (degenerate faces, singular transforms, the primitive limit) are Geometry::build's.
+bool check_shape(const ShapeSpec& s, size_t index, std::vector<SpecError>& errors) {
+    const ElementTable& table = element_table(element_of(s));
+    bool ok = check_fields(table, s, SpecItem::Shape, index, s.tag, errors);
+    if (s.kind == ShapeKind::Triangle) {
+        for (const Vec3& v : s.v) {
+            if (auto problem = vec3_problem(*table.find("vertices"), v)) {
+                errors.push_back(
+                    {SpecItem::Shape, index, s.tag, "triangle vertex " + *problem, -1, "vertices"});
+                return false;
+            }
+        }
+    }
+    return ok;
 }
 
 // World-space corners of an object-space box.
@@ -139,21 +180,23 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     const size_t errors_before = errors.size();
     auto scene = std::shared_ptr<Scene>(new Scene());
 
-    check_settings(spec.settings, errors);
+    const bool settings_ok = check_settings(spec.settings, errors);
     scene->settings_ = spec.settings;
 
-    std::string message;
-    if (auto cam = Camera::create(spec.camera, spec.settings.width, spec.settings.height, message))
-        scene->camera_ = *cam;
-    else
-        errors.push_back({SpecItem::Camera, 0, spec.camera.tag, message, -1});
+    // The camera's frame needs the image size: only once the settings are valid.
+    if (check_fields(element_table(Element::Camera), spec.camera, SpecItem::Camera, 0, spec.camera.tag,
+                     errors) &&
+        settings_ok) {
+        std::string message;
+        if (auto cam = Camera::create(spec.camera, spec.settings.width, spec.settings.height, message))
+            scene->camera_ = *cam;
+        else
+            errors.push_back({SpecItem::Camera, 0, spec.camera.tag, message, -1});
+    }
 
     for (size_t i = 0; i < spec.lights.size(); ++i) {
         const LightSpec& l = spec.lights[i];
-        if (auto err = validate_light(l)) {
-            errors.push_back({SpecItem::Light, i, l.tag, *err, -1});
-            continue;
-        }
+        if (!check_light(l, i, errors)) continue;
         scene->lights_.push_back(prepare_light(l));
         if (l.kind == LightKind::Area && l.samples_u * l.samples_v > 1) scene->multi_cell_area_light_ = true;
     }
@@ -163,11 +206,10 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     for (size_t i = 0; i < spec.materials.size(); ++i) {
         const MaterialSpec& ms = spec.materials[i];
         Material m;
-        if (auto err = check_material(ms)) {
-            errors.push_back({SpecItem::Material, i, ms.tag, *err, -1});
+        if (!check_material(ms, i, errors)) materials_ok = false;
+        if (ms.texture && !check_texture(*ms.texture, i, errors)) {
             materials_ok = false;
-        }
-        if (ms.texture) {
+        } else if (ms.texture) {
             std::string err;
             m.texture = Texture::create(*ms.texture, cache, err);
             if (!m.texture) {
@@ -175,7 +217,9 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
                 materials_ok = false;
             }
         }
-        if (ms.bump && ms.bump_strength > 0) {
+        if (ms.bump && !check_texture(*ms.bump, i, errors)) {
+            materials_ok = false;
+        } else if (ms.bump && ms.bump_strength > 0) {
             std::string err;
             m.bump = Texture::create(*ms.bump, cache, err);
             if (!m.bump) {
@@ -201,6 +245,8 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
         if (spec.shapes[i].material >= spec.materials.size()) {
             errors.push_back({SpecItem::Shape, i, spec.shapes[i].tag, "material index out of range", -1});
+            shapes_ok = false;
+        } else if (!check_shape(spec.shapes[i], i, errors)) {
             shapes_ok = false;
         }
         scene->object_to_world_.push_back(spec.shapes[i].object_to_world);

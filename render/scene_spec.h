@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace wsd::render {
@@ -135,9 +136,12 @@ struct SceneSpec {
 
 namespace wsd::render {
 
-// An error found while building the renderer's scene from a SceneSpec (a missing texture file, a
-// degenerate triangle, parallel camera vectors...). `item` and `index` say which list element it
-// concerns; `tag` is that element's tag; `face` is a mesh face index (or -1).
+// An error found while building the renderer's scene from a SceneSpec (a value out of its field's
+// range, a missing texture file, a degenerate triangle, parallel camera vectors...). `item` and
+// `index` say which list element it concerns; `tag` is that element's tag; `field` is the name of
+// the field it concerns as in the element's table (render/params.h; empty when it concerns the
+// element as a whole); `face` is a mesh face index (or -1). The message is complete: it names the
+// face it concerns, so a producer only chooses where to show it.
 enum class SpecItem { Settings, Camera, Light, Material, Texture, Shape };
 struct SpecError {
     SpecItem item = SpecItem::Shape;
@@ -145,6 +149,7 @@ struct SpecError {
     uint32_t tag = 0;
     std::string message;
     long face = -1;
+    std::string_view field = {};
 };
 
 }  // namespace wsd::render

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/geometry.h"
+#include "render/limits.h"
 #include "render/scene_spec.h"
 
 namespace wsd::render {
@@ -21,7 +22,7 @@ struct Image {
 // Loads PNG/JPEG/BMP/TGA (sRGB → linear) and HDR and PFM (linear). On failure returns nullptr and sets
 // `error` to a message naming the path that was tried and the reason. Images above
 // kMaxImagePixels are refused (a 20-byte header can claim 4 billion pixels).
-inline constexpr long long kMaxImagePixels = 1LL << 27;
+inline constexpr long long kMaxImagePixels = kMaxTexturePixels;
 std::shared_ptr<const Image> load_image(const std::string& path, std::string& error);
 
 // Each file is loaded once and shared by every texture that names it.

@@ -132,7 +132,8 @@ TEST_CASE("a mesh file's zero-area triangles are skipped with one warning; writt
                "f 1 2 5 5\nf 2 3 5 5\nf 3 4 5 5\nf 4 1 5 5\n");
     const std::string head =
         "camera { position <0, 0.5, -4>  look_at <0, 0.5, 0> }\nlet m = material { color <1, 1, 1> }\n";
-    write_file(dir / "s.wsd", head + "mesh { file \"cap.obj\"  material m }\n");
+    write_file(dir / "s.wsd",
+               head + "mesh { file \"cap.obj\"  material m }\nlight point { position <0, 5, -5> }\n");
     RunResult r = run_wsd(dir, "check s.wsd");
     CHECK(r.status == 0);
     CHECK(r.out.find("4 triangles") != std::string::npos);

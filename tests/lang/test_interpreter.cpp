@@ -583,11 +583,14 @@ TEST_CASE("includes nest at most 64 deep", "[interpreter][include][limits]") {
     CHECK(l->errors().empty());
 }
 
+// A camera and a light, so that the only warnings are the includes'.
+const std::string kLitCamera = std::string(kCamera) + "light point { position <0, 5, -5> }\n";
+
 TEST_CASE("an include runs again in each loop iteration and in sibling scopes", "[interpreter][include]") {
     TempDir dir;
     dir.write("place.wsdi", "sphere { center <i, 0, 0> radius 0.4 material material { } }\n");
     const std::string main =
-        dir.write("main.wsd", std::string(kCamera) + "for i in 0 .. 3 { include \"place.wsdi\" }\n");
+        dir.write("main.wsd", kLitCamera + "for i in 0 .. 3 { include \"place.wsdi\" }\n");
     auto l = load_file(main);
     REQUIRE(l->errors().empty());
     REQUIRE(l->scene);
@@ -612,7 +615,7 @@ TEST_CASE("an include of a file already included in an enclosing scope is skippe
     dir.write("lib.wsdi", "let size = 3\n");
     dir.write("obj.wsdi", "sphere { center <0, 0, 0> radius 1 material material { } }\n");
     const std::string main =
-        dir.write("main.wsd", std::string(kCamera) +
+        dir.write("main.wsd", kLitCamera +
                                   "include \"lib.wsdi\"\n"
                                   "include \"obj.wsdi\"\n"
                                   "if true { include \"lib.wsdi\"  include \"obj.wsdi\" }\n");
@@ -625,12 +628,12 @@ TEST_CASE("an include of a file already included in an enclosing scope is skippe
     REQUIRE(warnings.size() == 1);
     CHECK(
         warnings[0] ==
-        "4:39: include of 'obj.wsdi' skipped: it was already included in this scope or an enclosing one, so "
+        "5:39: include of 'obj.wsdi' skipped: it was already included in this scope or an enclosing one, so "
         "its objects are not added again");
     const Diagnostic* w = nullptr;
     for (const Diagnostic& d : l->diags.all())
         if (d.severity == Severity::Warning) w = &d;
     REQUIRE(w);
     REQUIRE(w->notes.size() == 1);
-    CHECK(where(l->sources, w->notes[0].span) == "3:9");
+    CHECK(where(l->sources, w->notes[0].span) == "4:9");
 }

@@ -229,11 +229,21 @@ TEST_CASE("properties are read into the spec", "[lower]") {
 
 TEST_CASE("blocks report unknown, repeated, missing, mistyped and out-of-range properties",
           "[lower][errors]") {
+    // A misspelt name is one error: the property it meant is not also reported missing.
     auto l = scene("sphere { center <0, 0, 0> radus 1" + kMat + "}\n");
-    REQUIRE(l->diags.all().size() == 2);
+    REQUIRE(l->diags.all().size() == 1);
     CHECK(l->errors()[0] == "2:27: unknown property 'radus' in sphere");
     CHECK(l->diags.all()[0].help == std::vector<std::string>{"did you mean 'radius'?"});
-    CHECK(l->errors()[1] == "2:1: missing property 'radius' in sphere");
+    CHECK(body_errors("box { min <0, 0, 0> mx <1, 1, 1>" + kMat + "}") ==
+          std::vector<std::string>{"1:21: unknown property 'mx' in box"});
+    CHECK(body_errors("mesh { fil \"a.obj\"" + kMat + "}") ==
+          std::vector<std::string>{"1:8: unknown property 'fil' in mesh"});
+    CHECK(body_errors("sphere { center <0, 0, 0> radius 1 materal m }") ==
+          std::vector<std::string>{"1:36: unknown property 'materal' in sphere"});
+    // A name that is unknown and suggests nothing still leaves the property missing.
+    CHECK(body_errors("sphere { center <0, 0, 0> xyzzy 1" + kMat + "}") ==
+          std::vector<std::string>{"1:27: unknown property 'xyzzy' in sphere",
+                                   "1:1: missing property 'radius' in sphere"});
 
     l = scene("sphere { center <0, 0, 0> radius 1 radius 2" + kMat + "}\n");
     REQUIRE(l->errors() == std::vector<std::string>{"2:36: repeated property 'radius' in sphere"});
@@ -415,7 +425,7 @@ TEST_CASE("bad mesh faces are reported at the face, naming it", "[lower][mesh]")
     CHECK(body_errors(verts + "[]" + kMat + "}") == std::vector<std::string>{"1:68: 'faces' is empty"});
     CHECK(
         body_errors(verts + "[<0, 1, 2>] uvs [<0, 0>]" + kMat + "}") ==
-        std::vector<std::string>{"1:84: 'uvs' has 1 elements, but the mesh has 4 vertices (one per vertex)"});
+        std::vector<std::string>{"1:84: 'uvs' has 1 element, but the mesh has 4 vertices (one per vertex)"});
     CHECK(body_errors("mesh { vertices [<0, 0, 0>, <1, 0, 0>, <1, 1, 0>] faces [<0, 1, 2>] normals [<0, 0, "
                       "1>, <0, 0, 0>, <0, 0, 1>]" +
                       kMat + "}") == std::vector<std::string>{"1:89: normal 1 is the zero vector"});
@@ -499,11 +509,55 @@ TEST_CASE("SpecErrors find faces given as a general list", "[lower][spec-errors]
     const uint32_t tag = e->scene.spec.shapes[0].tag;
     Diagnostics diags;
     report_spec_errors(
-        {wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "degenerate triangle", 1}}, e->scene,
-        e->sources, diags);
+        {wsd::render::SpecError{wsd::render::SpecItem::Shape, 0, tag, "face 1: degenerate triangle", 1}},
+        e->scene, e->sources, diags);
     REQUIRE(diags.all().size() == 1);
     CHECK(where(e->sources, diags.all()[0].span) == "3:61");
     CHECK(diags.all()[0].message == "face 1: degenerate triangle");
+}
+
+TEST_CASE("SpecErrors about a field are shown at its value, or at the element when not written",
+          "[lower][spec-errors]") {
+    auto e =
+        evaluate_text(std::string(kCamera) + "settings { height 100 }\nlight point { position <0, 5, 0> }\n" +
+                      "sphere { center <0, 0, 0>  radius 2" + kMat + "}\n");
+    REQUIRE(e->errors().empty());
+    using wsd::render::SpecError, wsd::render::SpecItem;
+    const auto& spec = e->scene.spec;
+    Diagnostics diags;
+    report_spec_errors({SpecError{SpecItem::Shape, 0, spec.shapes[0].tag, "bad radius", -1, "radius"},
+                        SpecError{SpecItem::Shape, 0, spec.shapes[0].tag, "bad sphere", -1},
+                        SpecError{SpecItem::Settings, 0, 0, "bad height", -1, "height"},
+                        SpecError{SpecItem::Settings, 0, 0, "bad width", -1, "width"},
+                        SpecError{SpecItem::Light, 0, spec.lights[0].tag, "bad colour", -1, "color"},
+                        SpecError{SpecItem::Camera, 0, spec.camera.tag, "bad up", -1, "look_at"}},
+                       e->scene, e->sources, diags);
+    REQUIRE(diags.all().size() == 6);
+    CHECK(where(e->sources, diags.all()[0].span) == "4:35");  // the radius value
+    CHECK(where(e->sources, diags.all()[1].span) == "4:1");   // the sphere
+    CHECK(where(e->sources, diags.all()[2].span) == "2:19");  // the height value
+    CHECK(where(e->sources, diags.all()[3].span) == "2:1");   // width not written: the block
+    CHECK(where(e->sources, diags.all()[4].span) == "3:1");   // color not written: the light
+    CHECK(diags.all()[0].message == "bad radius");
+    CHECK(where(e->sources, diags.all()[5].span) == "1:39");  // the look_at value
+
+    // Materials and textures: their own values; one inherited from `base` is shown at the
+    // material.
+    e = evaluate_text(std::string(kCamera) +
+                      "let b = material { reflection 0.5 }\n"
+                      "sphere { center <0, 0, 0> radius 1 material material { base b  transmission 0.5  "
+                      "texture checker { scale 2 } } }\n");
+    REQUIRE(e->errors().empty());
+    const auto& material = e->scene.spec.materials[0];
+    diags = Diagnostics{};
+    report_spec_errors({SpecError{SpecItem::Material, 0, material.tag, "m", -1, "transmission"},
+                        SpecError{SpecItem::Material, 0, material.tag, "m", -1, "reflection"},
+                        SpecError{SpecItem::Texture, 0, material.texture->tag, "t", -1, "scale"}},
+                       e->scene, e->sources, diags);
+    REQUIRE(diags.all().size() == 3);
+    CHECK(where(e->sources, diags.all()[0].span) == "3:77");   // the transmission value
+    CHECK(where(e->sources, diags.all()[1].span) == "3:45");   // the material
+    CHECK(where(e->sources, diags.all()[2].span) == "3:106");  // the checker's scale value
 }
 
 TEST_CASE("SpecErrors in an included file carry the include chain", "[lower][spec-errors]") {
@@ -534,4 +588,19 @@ TEST_CASE("the primitive limit counts mesh triangles", "[lower][limits]") {
           std::vector<std::string>{
               "2:1: the scene has more than 3 primitives (the limit; a mesh counts its triangles)"});
     CHECK(e->interpreter->aborted());
+}
+
+TEST_CASE("a scene without lights is warned about, once, at its camera", "[lower][lights]") {
+    auto l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 1" + kMat + "}\n");
+    REQUIRE(l->scene);
+    CHECK(messages(l->diags, l->sources, Severity::Warning) ==
+          std::vector<std::string>{"1:1: no lights: only ambient light"});
+    // A scene with a light, a fragment (lit by the scene that includes it) and a scene with
+    // errors are not.
+    l = load_text(std::string(kCamera) + "light point { position <0, 5, 0> }\n");
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+    l = load_text("sphere { center <0, 0, 0> radius 1" + kMat + "}\n", true);
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
+    l = load_text(std::string(kCamera) + "sphere { center <0, 0, 0> radius 0" + kMat + "}\n");
+    CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
 }

@@ -561,10 +561,11 @@ TEST_CASE("R50: a textured plane seen at 0.01° elevation stays inside its textu
 
 TEST_CASE("R51: the NaN/Inf census counts non-finite samples and stores 0 for them") {
     // render_spec asserts a zero count in every other render test; this one shows the count is
-    // real: a light of intensity 1e300 makes samples that overflow the float film.
+    // real: a light of intensity 1e30 on a surface of colour 1e30 (each within single precision,
+    // as build_scene requires) makes samples that overflow the float film.
     auto spec = basic_scene(8, 8);
-    spec.shapes.push_back(sphere({0, 0, 0}, 1, add_material(spec, matte(Color(1)))));
-    spec.lights.push_back(point_light({0, 0, -5}, 1e300));
+    spec.shapes.push_back(sphere({0, 0, 0}, 1, add_material(spec, matte(Color(1e30)))));
+    spec.lights.push_back(point_light({0, 0, -5}, 1e30));
     std::vector<SpecError> errors;
     auto scene = wsd::render::build_scene(spec, errors);
     REQUIRE(scene);
