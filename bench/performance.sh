@@ -9,7 +9,8 @@
 #   --quick   small sizes and one run of each, for checking the script (about a minute); the
 #             `wsd bench` output then goes to a temporary directory instead of docs/bench/
 #   -o OUT    the page to write (default docs/performance.md)
-# A full run takes about 10 minutes on 2 cores.
+# A full run takes about 6 CPU-minutes, mostly on one thread: 15 minutes of wall time on a busy
+# 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -57,6 +58,11 @@ section() { printf '\n## %s\n\n' "$1" >>"$page"; }
 para() { printf '%s\n' "$@" >>"$page"; }
 
 load_before=$(loadavg)
+# The commit measured; "with local changes" only for changes outside the files this run writes.
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+if [[ -n $(git status --porcelain 2>/dev/null | grep -vE " (docs/performance\.md|docs/bench/.*|$out)$" || true) ]]; then
+  commit+=" with local changes"
+fi
 
 # ---------------------------------------------------------------- the Cornell box against POV-Ray
 cornell_table() {
@@ -154,6 +160,8 @@ threads_table() {
   section "Threads"
   local cmd=("$wsd" render examples/cornell.wsd --width "$threads_size" --height "$threads_size" --quiet)
   log "thread scaling at ${threads_size}x${threads_size}, $pairs pairs"
+  local load_here
+  load_here=$(loadavg)
   local i n t
   for ((i = 0; i < pairs; i++)); do
     for n in 1 2; do
@@ -166,8 +174,9 @@ threads_table() {
   w1=$(cut -d' ' -f1 "$tmp/threads-1.txt" | median); w2=$(cut -d' ' -f1 "$tmp/threads-2.txt" | median)
   c1=$(awk '{ print $2 + $3 }' "$tmp/threads-1.txt" | median); c2=$(awk '{ print $2 + $3 }' "$tmp/threads-2.txt" | median)
   para "\`build/wsd render examples/cornell.wsd --width $threads_size --height $threads_size --threads N\`, N = 1 and 2" \
-       "alternating, $pairs $( ((pairs == 1)) && echo pair || echo pairs); medians. The two images are byte-identical (checked). On a shared machine" \
-       "two threads get two cores only when no one else is busy: see the load average above." \
+       "alternating, $pairs $( ((pairs == 1)) && echo pair || echo pairs); medians. The two images are byte-identical (checked). Two threads" \
+       "get two cores only when nothing else runs: the load average (1, 5, 15 min) was $load_here" \
+       "when this step began, on $(nproc) cores." \
        "" \
        "| threads | wall s (median) | wall s (all runs) | CPU-s (median) | speed-up (wall) |" \
        "|---:|---:|---:|---:|---:|" \
@@ -242,14 +251,15 @@ compiler_version=$("${compiler:-c++}" --version 2>/dev/null | head -1 || true)
 build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -1)
 os=$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-}")
 memory=$(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)
-commit=$(git describe --always --dirty 2>/dev/null || echo unknown)
 elapsed=$(($(date +%s) - start))
+# CPU time of this script and everything it ran (the second line of `times`: children).
+cpu=$(times | awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); s += 60 * t[1] + t[2] } printf "%d min %d s", s / 60, s % 60 }')
 {
   echo "# Performance"
   echo
-  echo "Measured by \`bench/performance.sh$( ((quick)) && echo " --quick")\` on $(date -u '+%Y-%m-%d %H:%M UTC'), in $((elapsed / 60)) min $((elapsed % 60)) s;"
-  echo "every figure on this page is what that run printed. To measure again on your machine:"
-  echo "\`./setup.sh && bench/performance.sh\` (the page is rewritten; about 10 minutes on 2 cores)."
+  echo "Measured by \`bench/performance.sh$( ((quick)) && echo " --quick")\` on $(date -u '+%Y-%m-%d %H:%M UTC') ($((elapsed / 60)) min $((elapsed % 60)) s of wall"
+  echo "time, $cpu of CPU time); every figure on this page is what that run printed. To measure"
+  echo "again on your machine: \`./setup.sh && bench/performance.sh\` (the page is rewritten)."
   echo
   echo "- Machine: ${model:-unknown processor}, $(nproc) cores (\`nproc\`), $memory memory; ${os:-unknown system}."
   echo "- Build: ${build_type:-unknown} (\`$build/\`), ${compiler_version:-unknown compiler}, commit \`$commit\`."
