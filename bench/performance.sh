@@ -253,7 +253,8 @@ os=$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-}")
 memory=$(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)
 elapsed=$(($(date +%s) - start))
 # CPU time of this script and everything it ran (the second line of `times`: children).
-cpu=$(times | awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); s += 60 * t[1] + t[2] } printf "%d min %d s", s / 60, s % 60 }')
+times >"$tmp/times"  # in this shell: a command substitution would time only its own subshell
+cpu=$(awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); s += 60 * t[1] + t[2] } printf "%d min %d s", s / 60, s % 60 }' "$tmp/times")
 {
   echo "# Performance"
   echo
