@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CI: shows that results do not depend on FMA contraction (issue 6, robustness.md T17/R53).
+# CI: shows that results do not depend on FMA contraction (docs/robustness.md: build invariance, R53).
 # Builds wsd and the render suite with -ffp-contract=fast -mfma in build-fpc, runs the render
 # suite there (watertightness, offsets, scale invariance, every hard case), then renders every
 # example at 64x64 with both the contracted build and the Release build (build/, made by

@@ -1,5 +1,5 @@
 // The statistics of one render: a POV-Ray-like table for `--stats` (stdout) and the JSON of
-// `--stats-json FILE` (wsd-cli.md; the keys the issues name, plus every other counter).
+// `--stats-json FILE` (docs/wsd-cli.md: every counter).
 #pragma once
 
 #include <cstdint>

@@ -4,7 +4,7 @@
 # Usage: bench/cornell_vs_povray.sh [SIZE=1200] [THREADS=1] [--adaptive]
 # --adaptive: `adaptive 1` on POV-Ray's area light, --adaptive-lights for wsd. WSD_FLAGS adds more
 # wsd render options, e.g. WSD_FLAGS=--adaptive-aa.
-# Defaults are the seed's settings: 1200x1200, 4 camera rays per pixel, 10x10 light, depth 5.
+# Defaults are examples/cornell.wsd's settings: 1200x1200, 4 camera rays per pixel, 10x10 light, depth 5.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 size=${1:-1200}; threads=${2:-1}; adaptive=${3:-}

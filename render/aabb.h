@@ -1,4 +1,4 @@
-// Float bounding boxes and the robust ray/box slab test used by BVH traversal (robustness.md T7):
+// Float bounding boxes and the ray/box slab test of BVH traversal (robustness.md, robust slab test):
 // the double ray origin is rounded to floats on both sides so that each slab distance is
 // conservative, tFar is widened by 1 + 2γ₃, and NaN slabs (0·∞) lose every comparison.
 #pragma once

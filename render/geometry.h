@@ -1,6 +1,6 @@
 // The scene's geometry: every shape of a SceneSpec in world space, a BVH over the bounded ones
 // (planes are kept outside it), closest-hit and any-hit queries, and the surface data of a hit.
-// Robust by construction (see ../shared/robustness.md): watertight triangles, stable sphere roots,
+// Robust by construction (docs/robustness.md): watertight triangles, stable sphere roots,
 // widened NaN-safe slab tests, error-bounded spawn origins; no fixed epsilon anywhere.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Geometry::build: validates every shape of a SceneSpec (robustness.md T18: non-finite values,
+// Geometry::build: validates every shape (robustness.md, load-time validation: non-finite values,
 // degenerate triangles, bad indices, singular transforms, the 2^24 primitive limit), converts it
 // to world-space primitives, builds the BVH over the bounded ones and stores them in leaf order.
 #include <algorithm>
@@ -141,7 +141,7 @@ bool Builder::world_vertex(const Transform& x, const Vec3& p, Vec3f& out) {
     return is_finite(out);
 }
 
-// Zero area in world space (after rounding to float): |e1 × e2| ≤ 1e-12·|e1||e2| (T18).
+// Zero area in world space (after rounding to float): |e1 × e2| ≤ 1e-12·|e1||e2|.
 bool Builder::degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const {
     Vec3 v0(g.verts[i0]), v1(g.verts[i1]), v2(g.verts[i2]);
     Vec3 e1 = v1 - v0, e2 = v2 - v0;

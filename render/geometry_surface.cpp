@@ -1,6 +1,6 @@
 // Geometry::surface: the hit point with its rounding-error bound, normals, UVs and object-frame
 // point of each shape kind. Sphere points are reprojected onto the sphere and triangle points
-// interpolated from barycentrics, so their error bounds are tight (robustness.md T3).
+// interpolated from barycentrics, so their error bounds are tight (robustness.md, offset origins).
 #include <cmath>
 
 #include "render/geometry_impl.h"

@@ -1,7 +1,7 @@
 // Image files for textures: decoding through stb_image (8-bit sRGB → linear through the exact
 // curve, 16-bit PNG through the same curve, HDR already linear), PFM (linear) through the image
-// reader of image_io.h, the per-scene cache that loads each path once, and the bilinear lookup
-// with wrap/clamp addressing (robustness.md T14, R49).
+// reader of image_io.h, the per-scene cache that loads each path once, and the bilinear lookup,
+// wrapped or clamped (robustness.md: safe texture lookup, R49).
 #include <stb_image.h>
 #include <sys/stat.h>
 

@@ -170,7 +170,7 @@ private:
             ++stats_.fresnel_evals;
             const double eta = front ? 1.0 / m.ior : m.ior;
             // A bent normal may not send the reflected ray below the surface or the refracted ray
-            // to the viewer's side (robustness.md T11); if it would, use the geometric normal.
+            // to the viewer's side (robustness.md, consistent shading normals); if so, use ng instead.
             Vec3 n_use = glm::dot(N, V) > 0 ? N : ng_v;
             refl_dir = reflect(ray.d, n_use);
             FresnelResult fr = fresnel_refract(ray.d, n_use, eta);

@@ -48,7 +48,7 @@ struct RawTerm {
 [[gnu::always_inline]] inline RawTerm raw_term(const Shading& sh, double dx, double dy, double dz) {
     const double d2 = (dx * dx + dy * dy) + dz * dz;
     // A sample behind an opaque surface is blocked by the surface itself, whatever a bent or
-    // interpolated N says (robustness.md T11 (b), R35: no light leaks through).
+    // interpolated N says (robustness.md, consistent shading normals (b), R35: no light leaks through).
     const double facing = (dx * sh.ng_v.x + dy * sh.ng_v.y) + dz * sh.ng_v.z;
     constexpr double kInf = std::numeric_limits<double>::infinity();
     const bool ok = (d2 > 0.0) & (d2 < kInf) & (!sh.opaque | (facing > 0));

@@ -1,4 +1,4 @@
-// Numeric helpers for the geometry code (robustness.md T1, T9, T17): GLM aliases, gamma(n) error
+// Numeric helpers for geometry (robustness.md: error bounds, safe functions): GLM aliases, gamma(n) error
 // bounds for double and float, next-float stepping, Kahan's difference of products, an opaque
 // barrier that stops the compiler fusing a product into an FMA, and safe elementary functions.
 #pragma once
@@ -74,7 +74,7 @@ inline float to_float_up(double v) {
 
 // Hides a value's origin from the optimiser, so that `opaque(a*b) - opaque(c*d)` is evaluated
 // as two rounded products and a subtraction whatever -ffp-contract says: the watertight triangle
-// test needs e(p, q) == -e(q, p) exactly (robustness.md T6, M2).
+// test needs e(p, q) == -e(q, p) exactly (robustness.md, watertight triangles).
 template <class T>
 inline T opaque(T v) {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))

@@ -1,5 +1,5 @@
 // Ken Perlin's improved noise (2002): reference permutation, quintic fade, 12-direction grad.
-// Robustness (robustness.md T13, R37): the lattice cell comes from floor() in double and is
+// Robustness (robustness.md, robust noise; R37): the lattice cell comes from floor() in double and is
 // wrapped modulo 256 while still a double, so no float-to-int cast can overflow; non-finite
 // input gives 0. Also the noise/turbulence/marble/wood patterns of wsd-language.md §4.
 #include "render/noise.h"
@@ -116,7 +116,7 @@ double perlin_pattern(PerlinKind kind, const Vec3& scale, int octaves, const Vec
             break;
         case PerlinKind::Wood: {
             // floor, not truncation: g − trunc(g) is negative wherever the noise is, which the clamp
-            // turned into a flat band along every sign change (the seed's seam).
+            // turned into a flat band along every sign change (the DH2323 report's seam).
             ++noise_calls;
             const double g = 5.0 * perlin_noise(s.x, s.y, s.z);
             coef = g - std::floor(g);

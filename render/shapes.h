@@ -1,7 +1,7 @@
 // Primitive storage and ray/primitive intersection: watertight triangles (Woop–Benthin–Wald in
 // double with antisymmetric edge functions), spheres (Haines discriminant, stable roots), boxes
 // (object-space slabs) and planes. Each test rejects the root at the ray origin by an error bound
-// instead of an epsilon, so spawned rays never re-hit their own surface (robustness.md T3, T6, T8).
+// instead of an epsilon, so spawned rays never re-hit their own surface (robustness.md: offset origins).
 #pragma once
 
 #include <cstdint>

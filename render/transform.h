@@ -1,6 +1,6 @@
 // An object's affine transform with its inverse, normal matrix and error bounds: validated once
 // (finite, affine, not singular), classified (identity, similarity), and applied to points with
-// pbrt-v4's conservative rounding-error propagation (robustness.md T1, T3, T18).
+// pbrt-v4's conservative rounding-error propagation (robustness.md: error bounds, offset origins).
 #pragma once
 
 #include <optional>
@@ -46,7 +46,7 @@ private:
 
 // Builds a Transform from a 4×4 matrix (GLM column-major). Returns an error message when the
 // matrix is not finite, not affine, or singular (|det| ≤ 1e-12 × the product of the column
-// lengths, robustness.md T18), and leaves `out` unspecified.
+// lengths, robustness.md, load-time validation), and leaves `out` unspecified.
 std::optional<std::string> make_transform(const Mat4& m, Transform& out);
 
 }  // namespace wsd::render

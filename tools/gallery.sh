@@ -1,19 +1,45 @@
 #!/usr/bin/env bash
 # Regenerates the gallery: renders every example (and the variants of the figures that compare
-# settings) a few hundred pixels wide into docs/gallery/, then rewrites the README's gallery
-# section (between the GALLERY markers) with each picture beside the first lines of its scene.
-# Usage: tools/gallery.sh [WIDTH=320]   (needs a built build/wsd; ./setup.sh builds it)
+# settings) into docs/gallery/, then rewrites the README's gallery section (between the GALLERY
+# markers) with each picture beside the first comment lines of its scene.
+#
+# The pictures are rendered at twice the width the README shows them, with enough camera rays
+# that no scene shows aliasing or noise it is not meant to: 16 a pixel, and a full 8×8 grid where
+# a checker floor recedes to the horizon (it shimmers at fewer; adaptive antialiasing leaves
+# moiré there, since its first pass of one ray a pixel aliases). The figures about sampling keep
+# the settings they compare: supersampling.wsd's 1 and 16 rays a pixel, and soft-shadows.wsd's
+# jittered 2×2 light at one ray a pixel (more camera rays would average its noise away).
+#
+# Usage: tools/gallery.sh [--captions] [--width W] [NAME...]
+#   --captions  rewrite only the README section (after editing an example's comments)
+#   --width W   the pictures' width in pixels (default 640)
+#   NAME...     render only these pictures (e.g. glass soft-shadows-2); default all
+# Needs a built build/wsd (./setup.sh builds it); WSD names another executable. A full run takes
+# about 6 CPU-minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-width=${1:-320}
+captions_only=0; width=640; only=()
+while (($#)); do
+  case $1 in
+    --captions) captions_only=1 ;;
+    --width) width=${2:?--width needs a number}; shift ;;
+    *) only+=("$1") ;;
+  esac
+  shift
+done
+shown=$((width / 2))  # the width the README shows (the picture is sharp on high-density screens)
 wsd=${WSD:-$PWD/build/wsd}
 out=docs/gallery
 mkdir -p "$out"
 
+wanted() { ((${#only[@]} == 0)) || [[ " ${only[*]} " == *" $1 "* ]]; }
 render() {  # render NAME SCENE_FILE_OR_- [wsd options...]
   local name=$1 scene=$2; shift 2
-  echo "gallery: $name" >&2
+  wanted "$name" || return 0
+  echo "gallery: $name $*" >&2
+  local t0=$SECONDS
   (cd examples && "$wsd" render "$scene" -o "../$out/$name.png" --quiet "$@")
+  echo "gallery: $name took $((SECONDS - t0)) s" >&2
 }
 size_of() {  # the scene's own aspect ratio, scaled to $width
   local w h
@@ -21,20 +47,29 @@ size_of() {  # the scene's own aspect ratio, scaled to $width
   h=$(grep -oE 'height +[0-9]+' "examples/$1" | head -1 | awk '{print $2}'); h=${h:-480}
   echo "--width $width --height $((width * h / w))"
 }
+quality_of() {  # camera rays for the gallery picture NAME
+  case $1 in
+    glass|bumps|mesh) echo "--supersamples 64" ;;  # checker floors to the horizon
+    soft-shadows-2|supersampling|supersampling-1) ;;  # set by the scene or below
+    *) echo "--supersamples 16" ;;
+  esac
+}
 
-for f in examples/*.wsd; do
-  name=$(basename "$f" .wsd)
+if ((!captions_only)); then
+  for f in examples/*.wsd; do
+    name=$(basename "$f" .wsd)
+    # shellcheck disable=SC2046
+    render "$name" "$name.wsd" $(size_of "$name.wsd") $(quality_of "$name")
+  done
+  # The report's Figure 5: the other three lights of soft-shadows.wsd (variant 3 is the file's own).
+  for v in 0 1 2; do
+    # shellcheck disable=SC2046
+    render "soft-shadows-$v" soft-shadows.wsd $(size_of soft-shadows.wsd) $(quality_of "soft-shadows-$v") -D "variant=$v"
+  done
+  # The report's Figure 6: one ray per pixel (the file's own setting is a jittered 4×4 grid).
   # shellcheck disable=SC2046
-  render "$name" "$name.wsd" $(size_of "$name.wsd")
-done
-# Figure 5: the other three lights of soft-shadows.wsd (variant 3 is the file's own).
-for v in 0 1 2; do
-  # shellcheck disable=SC2046
-  render "soft-shadows-$v" soft-shadows.wsd $(size_of soft-shadows.wsd) -D "variant=$v"
-done
-# Figure 6: one ray per pixel (the file's own setting is a jittered 4×4 grid).
-# shellcheck disable=SC2046
-render supersampling-1 supersampling.wsd $(size_of supersampling.wsd) --supersamples 1
+  render supersampling-1 supersampling.wsd $(size_of supersampling.wsd) --supersamples 1
+fi
 
 # The README section.
 section=$(mktemp)
@@ -45,11 +80,11 @@ section=$(mktemp)
   for f in examples/*.wsd; do
     name=$(basename "$f" .wsd)
     head=$(grep -m 4 '^//' "$f" | sed 's/^\/\/ \{0,1\}//' | tr '\n' ' ' | sed 's/|/\\|/g')
-    pics="<img src=\"docs/gallery/$name.png\" width=\"$width\">"
+    pics="<img src=\"docs/gallery/$name.png\" width=\"$shown\">"
     case $name in
-      soft-shadows) pics=""; for v in 0 1 2; do pics+="<img src=\"docs/gallery/soft-shadows-$v.png\" width=\"$((width / 2))\"> "; done
-                    pics+="<img src=\"docs/gallery/soft-shadows.png\" width=\"$((width / 2))\">" ;;
-      supersampling) pics="<img src=\"docs/gallery/supersampling-1.png\" width=\"$((width * 3 / 4))\"> <img src=\"docs/gallery/supersampling.png\" width=\"$((width * 3 / 4))\">" ;;
+      soft-shadows) pics=""; for v in 0 1 2; do pics+="<img src=\"docs/gallery/soft-shadows-$v.png\" width=\"$((shown / 2))\"> "; done
+                    pics+="<img src=\"docs/gallery/soft-shadows.png\" width=\"$((shown / 2))\">" ;;
+      supersampling) pics="<img src=\"docs/gallery/supersampling-1.png\" width=\"$((shown * 3 / 4))\"> <img src=\"docs/gallery/supersampling.png\" width=\"$((shown * 3 / 4))\">" ;;
     esac
     echo "| **[$name.wsd](examples/$name.wsd)**<br>$head | $pics |"
   done

@@ -1,4 +1,4 @@
-// POV-Ray 3.7 port of examples/cornell.wsd (the seed's Figure 1) for the speed comparison in
+// POV-Ray 3.7 port of examples/cornell.wsd (the report's Figure 1) for the speed comparison in
 // bench/cornell_vs_povray.sh: same geometry, camera, 10x10 jittered area light, depth 5 (POV-Ray's
 // max_trace_level counts the camera ray, so 6). Image textures are replaced by plain pigments:
 // only ray counts and CPU time are compared, not pixels.

@@ -1,4 +1,4 @@
-// The parser hard cases of the robustness reference (Part 3, section J) as tests named by their
+// The parser hard cases of docs/robustness.md as tests named by their
 // R-number: R54 (malformed input, one table row per line), R55 (a large valid file), R56 (the
 // semantic validation table) and a pointer to where R57 (fuzzing) runs. Each input goes through
 // lang::load_scene, the whole front end that `wsd check` and `wsd render` run; an error row must

@@ -175,8 +175,8 @@ inline std::unique_ptr<Geometry> build_ok(const SceneSpec& spec, bool use_bvh = 
     return errors.empty() ? std::move(g) : nullptr;
 }
 
-// pbrt-v4's Triangle.Watertight mesh (robustness.md M2): a closed UV sphere whose vertices are
-// pushed out radially by up to `bump` (5 in M2: spiky); poles and the seam share vertices.
+// pbrt-v4's Triangle.Watertight mesh: a closed UV sphere whose vertices are
+// pushed out radially by up to `bump` (5 in pbrt's test: spiky); poles and the seam share vertices.
 // bump 0 gives the plain UV sphere of the given radius.
 inline std::shared_ptr<MeshData> perturbed_uv_sphere(int n_theta, int n_phi, Rng& rng, Vec3 offset = Vec3(0),
                                                      double bump = 5, double radius = 1) {

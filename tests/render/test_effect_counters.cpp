@@ -1,4 +1,4 @@
-// "Simulate only the effects a scene calls for" (issue 8), proved with counters: a plain diffuse
+// "Simulate only the effects a scene calls for", proved with counters: a plain diffuse
 // scene under a point light does no work of any optional kind; switching on one effect at a time
 // (mirror, glass, area light, checker texture, Perlin texture, bump) makes exactly that
 // kind of work non-zero, and a material with a zero weight spawns nothing.

@@ -377,7 +377,7 @@ TEST_CASE("R12 R13 spawned rays never re-hit any shape at scales 2^-10 .. 2^10 a
     for (int e = -10; e <= 10; e += 2)
         for (Vec3 at : {Vec3(0), Vec3(1e5, -1e5, 1e5)}) {
             // Float vertices 1e5 away sit on a 0.008 grid: small scales are not representable
-            // there (robustness.md M3), so far away only scales ≥ 1 are built.
+            // there, so far away only scales ≥ 1 are built.
             if (at != Vec3(0) && e < 0) continue;
             const double s = std::ldexp(1.0, e);
             ShapeSpec b = box({-1, -1, -1}, {1, 2, 1});

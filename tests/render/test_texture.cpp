@@ -1,5 +1,5 @@
 // Textures: image decoding (sRGB curve, HDR), the bilinear lookup and its addressing at every
-// awkward uv (robustness.md T14, R49; run under ASan in CI), the image cache and its errors,
+// awkward uv (robustness.md, safe texture lookup, R49; run under ASan in CI), the image cache and its errors,
 // checker cells, Perlin colours and the bump normal (R33, R34).
 #include <stb_image_write.h>
 #include <unistd.h>

@@ -1,0 +1,272 @@
+#!/usr/bin/env bash
+# Measures wsd and writes docs/performance.md from what it measured: the machine and the date at
+# the top, then one table per benchmark, each with the command that regenerates it. It builds
+# nothing: it runs the programs of an existing build directory (default build/, made by
+# ./setup.sh). The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
+# povray package); otherwise that section says so.
+#
+# Usage: bench/performance.sh [--quick] [-o OUT] [BUILD_DIR]
+#   --quick   small sizes and one run of each, for checking the script (about a minute); the
+#             `wsd bench` output then goes to a temporary directory instead of docs/bench/
+#   -o OUT    the page to write (default docs/performance.md)
+# A full run takes about 6 CPU-minutes, mostly on one thread: 15 minutes of wall time on a busy
+# 2-core machine.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0; out=docs/performance.md; build=build
+while (($#)); do
+  case $1 in
+    --quick) quick=1 ;;
+    -o) out=${2:?-o needs a file}; shift ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -*) echo "performance: unknown option $1" >&2; exit 2 ;;
+    *) build=$1 ;;
+  esac
+  shift
+done
+for program in wsd bench_mesh bench_obj bench_parse; do
+  [[ -x $build/$program ]] || { echo "performance: $build/$program not found; build first (./setup.sh)" >&2; exit 3; }
+done
+wsd=$(realpath "$build/wsd")
+export WSD=$wsd
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+TIMEFORMAT='%R %U %S'
+start=$(date +%s)
+
+if ((quick)); then
+  runs=1; cornell=200; adaptive=200; bench_size=32; threads_size=150; pairs=1
+  parse_args=(20000); mesh_args=(100 51); bench_dir=$tmp/bench
+else
+  runs=3; cornell=1200; adaptive=1200; bench_size=200; threads_size=600; pairs=3
+  parse_args=(); mesh_args=(); bench_dir=docs/bench
+fi
+
+log() { echo "performance: $*" >&2; }
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) exit 1; print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+range() { sort -g | awk 'NR == 1 { lo = $1 } { hi = $1 } END { print lo "–" hi }'; }
+# field FILE REGEX N: the Nth whitespace-separated field of the first line matching REGEX.
+field() { awk -v n="$3" "/$2/ { print \$n; exit }" "$1"; }
+fmt() { awk -v x="$1" -v d="${2:-2}" 'BEGIN { printf "%.*f", d, x }'; }
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
+commas() { printf "%d" "$1" | sed ':a; s/\B[0-9]\{3\}\>/,&/; ta'; }
+loadavg() { cut -d' ' -f1-3 /proc/loadavg; }
+
+page=$tmp/page.md
+section() { printf '\n## %s\n\n' "$1" >>"$page"; }
+para() { printf '%s\n' "$@" >>"$page"; }
+
+load_before=$(loadavg)
+# The commit measured; "with local changes" only for changes outside the files this run writes.
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+if [[ -n $(git status --porcelain 2>/dev/null | grep -vE " (docs/performance\.md|docs/bench/.*|$out)$" || true) ]]; then
+  commit+=" with local changes"
+fi
+
+# ---------------------------------------------------------------- the Cornell box against POV-Ray
+cornell_table() {
+  section "The Cornell box against POV-Ray"
+  if ! command -v povray >/dev/null; then
+    para "POV-Ray is not installed on this machine (\`apt-get install povray\`), so this comparison was" \
+         "not made."
+    return
+  fi
+  local args=("$cornell" 1) pov_version
+  pov_version=$(povray --version 2>&1 | awk '/^POV-Ray/ { print $2; exit }')
+  log "Cornell box against POV-Ray at ${cornell}x${cornell}"
+  bench/cornell_vs_povray.sh "${args[@]}" >"$tmp/cvp.txt"
+  log "the same with adaptive area lights"
+  bench/cornell_vs_povray.sh "${args[@]}" --adaptive >"$tmp/cvp-adaptive.txt"
+
+  para "\`bench/cornell_vs_povray.sh $cornell 1\` and \`bench/cornell_vs_povray.sh $cornell 1 --adaptive\`:" \
+       "examples/cornell.wsd and its POV-Ray ${pov_version:-3.7} port bench/scenes/cornell.pov at" \
+       "${cornell}×${cornell}, 4 camera rays a pixel, a 10×10 area light, depth 5, one thread, the two" \
+       "renderers one after the other (one run each). CPU-s is user + system time of the whole process" \
+       "(parse, build, render, write). A ray query is one camera, shadow, reflection or refraction ray;" \
+       "\"shaft-answered\" shadow rays were decided by their shaft without a traversal ([robustness.md](robustness.md))." \
+       "With \`--adaptive\`, POV-Ray's area light has \`adaptive 1\` and wsd renders with \`--adaptive-lights\`." \
+       "" \
+       "| area light | renderer | CPU-s | ray queries | M ray queries per CPU-s | shaft-answered shadow rays | CPU time, POV-Ray ÷ wsd |" \
+       "|---|---|---:|---:|---:|---:|---:|"
+  local f label w_cpu w_rays p_cpu p_rays shaft
+  for f in cvp cvp-adaptive; do
+    [[ $f == cvp ]] && label="full 10×10" || label="adaptive"
+    w_cpu=$(field "$tmp/$f.txt" '^wsd +[0-9]' 2); w_rays=$(field "$tmp/$f.txt" '^wsd +[0-9]' 3)
+    p_cpu=$(field "$tmp/$f.txt" '^povray +[0-9]' 2); p_rays=$(field "$tmp/$f.txt" '^povray +[0-9]' 3)
+    shaft=$(field "$tmp/$f.txt" '^wsd: ' 2)
+    para "| $label | wsd | $(fmt "$w_cpu") | $(commas "$w_rays") | $(fmt "$(awk "BEGIN{print $w_rays/$w_cpu/1e6}")" 1) | $(commas "$shaft") | **$(ratio "$p_cpu" "$w_cpu")×** |" \
+         "| | POV-Ray $pov_version | $(fmt "$p_cpu") | $(commas "$p_rays") | $(fmt "$(awk "BEGIN{print $p_rays/$p_cpu/1e6}")" 1) | — | |"
+  done
+  para "" \
+       "Not measured here: the report “Recursive Backwards Ray Tracing” publishes 286 s for this scene" \
+       "with its BVH and 540 s without, on its author's machine (its own published figures, for scale" \
+       "only)."
+}
+
+# ---------------------------------------------------------------- adaptive sampling
+adaptive_table() {
+  section "Adaptive sampling against full sampling"
+  log "adaptive options against full sampling at ${adaptive}x${adaptive}"
+  bench/adaptive_vs_full.sh "$adaptive" 1 >"$tmp/avf.txt"
+  para "\`bench/adaptive_vs_full.sh $adaptive 1\`: the Cornell box at ${adaptive}×${adaptive}, one thread, one run" \
+       "of each. \"Full\" is the scene with \`bailout 0\` and nothing adaptive: every camera ray, every light" \
+       "cell, every reflected and refracted ray. Same seed everywhere; PSNR and SSIM are \`wsd diff\`" \
+       "against the full image." \
+       "" \
+       "| setting | CPU-s | speed-up | ray queries | shadow rays | fewer shadow rays | PSNR vs full (dB) | SSIM |" \
+       "|---|---:|---:|---:|---:|---:|---:|---:|"
+  # Rows: a 36-character label, then CPU-s, speed-up, queries, shadow rays, shadow ratio,
+  # adaptive pixels, PSNR, SSIM.
+  sed -n '2,7p' "$tmp/avf.txt" | while IFS= read -r line; do
+    local label cpu speed rq sh shr psnr ssim
+    label=$(awk '{ for (i = 1; i <= NF - 8; i++) printf "%s%s", $i, (i < NF - 8 ? " " : "") }' <<<"$line")
+    read -r cpu speed rq sh shr _ psnr ssim < <(awk '{ for (i = NF - 7; i <= NF; i++) printf "%s ", $i; print "" }' <<<"$line")
+    if [[ $psnr == inf ]]; then psnr="—"; else psnr=$(fmt "$psnr"); fi
+    para "| $label | $(fmt "$cpu") | ${speed%x}× | $(commas "$rq") | $(commas "$sh") | ${shr%x}× | $psnr | $ssim |"
+  done
+}
+
+# ---------------------------------------------------------------- wsd bench
+bench_table() {
+  section "What accuracy costs: \`wsd bench\`"
+  local args=(examples/cornell.wsd -o "$bench_dir" --width "$bench_size" --height "$bench_size" --threads 1 --quiet)
+  ((quick)) && args+=(--quick)
+  log "wsd bench ${args[*]}"
+  local t
+  t=$( { time "$wsd" bench "${args[@]}" >"$tmp/bench.txt"; } 2>&1 )
+  local shown_args=("${args[@]}")
+  ((quick)) && shown_args[2]=DIR
+  para "\`build/wsd bench ${shown_args[*]}\` ($(fmt "$(cut -d' ' -f1 <<<"$t")" 0) s in all): the Cornell box at" \
+       "${bench_size}×${bench_size}, one thread; each knob is varied alone from the scene's settings (4 camera" \
+       "rays a pixel, a 10×10 light, depth 5, bailout 1/512), and the error is against a reference with" \
+       "256 camera rays a pixel, a 16×16 light, depth 10, bailout 0 and another seed. Times are the" \
+       "median of $( ((quick)) && echo "1 run" || echo "3 runs"). \`*\`: on the Pareto front of error against time."
+  if ((!quick)); then
+    para "Every column, with wall times and ray counts: [bench/bench.md](bench/bench.md); the data:" \
+         "[bench/bench.csv](bench/bench.csv)." "" '<img src="bench/bench.svg" width="720">'
+  fi
+  para "" "| knob | value | CPU-s | shadow rays | RMSE | PSNR (dB) | SSIM | Pareto |" \
+       "|---|---:|---:|---:|---:|---:|---:|:---:|"
+  # bench.csv: knob,value,wall_seconds,cpu_seconds,camera_rays,shadow_rays,reflection_rays,
+  # refraction_rays,ray_queries,rmse,psnr,max_abs_error,ssim,pareto
+  awk -F, 'function commas(n) { while (n ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", n); return n }
+           NR > 1 { printf "| %s | %s | %.2f | %s | %.6f | %.2f | %.5f | %s |\n",
+                    $1, $2, $4, commas($6), $10, $11, $13, ($14 == 1 ? "*" : "") }' "$bench_dir/bench.csv" >>"$page"
+}
+
+# ---------------------------------------------------------------- threads
+threads_table() {
+  section "Threads"
+  local cmd=("$wsd" render examples/cornell.wsd --width "$threads_size" --height "$threads_size" --quiet)
+  log "thread scaling at ${threads_size}x${threads_size}, $pairs pairs"
+  local load_here
+  load_here=$(loadavg)
+  local i n t
+  for ((i = 0; i < pairs; i++)); do
+    for n in 1 2; do
+      t=$( { time "${cmd[@]}" --threads "$n" -o "$tmp/threads-$n.png" >/dev/null; } 2>&1 )
+      echo "$t" >>"$tmp/threads-$n.txt"
+    done
+    cmp -s "$tmp/threads-1.png" "$tmp/threads-2.png" || { echo "performance: 1 and 2 threads differ" >&2; exit 1; }
+  done
+  local w1 w2 c1 c2
+  w1=$(cut -d' ' -f1 "$tmp/threads-1.txt" | median); w2=$(cut -d' ' -f1 "$tmp/threads-2.txt" | median)
+  c1=$(awk '{ print $2 + $3 }' "$tmp/threads-1.txt" | median); c2=$(awk '{ print $2 + $3 }' "$tmp/threads-2.txt" | median)
+  para "\`build/wsd render examples/cornell.wsd --width $threads_size --height $threads_size --threads N\`, N = 1 and 2" \
+       "alternating, $pairs $( ((pairs == 1)) && echo pair || echo pairs); medians. The two images are byte-identical (checked). Two threads" \
+       "get two cores only when nothing else runs: the load average (1, 5, 15 min) was $load_here" \
+       "when this step began, on $(nproc) cores." \
+       "" \
+       "| threads | wall s (median) | wall s (all runs) | CPU-s (median) | speed-up (wall) |" \
+       "|---:|---:|---:|---:|---:|" \
+       "| 1 | $(fmt "$w1") | $(cut -d' ' -f1 "$tmp/threads-1.txt" | range) | $(fmt "$c1") | 1.00× |" \
+       "| 2 | $(fmt "$w2") | $(cut -d' ' -f1 "$tmp/threads-2.txt" | range) | $(fmt "$c2") | $(ratio "$w1" "$w2")× |"
+}
+
+# ---------------------------------------------------------------- BVH and ray queries
+mesh_table() {
+  section "BVH: build and ray queries"
+  log "bench_mesh ${mesh_args[*]}"
+  "$build/bench_mesh" "${mesh_args[@]}" >"$tmp/mesh.txt"
+  local f=$tmp/mesh.txt tris
+  # after LINE-REGEX WORD: the number that follows WORD on the matching line.
+  after() { awk -v w="$2" "/^$1/ { for (i = 1; i < NF; i++) if (\$i == w) { v = \$(i + 1); gsub(/[,)]/, \"\", v); print v; exit } }" "$f"; }
+  tris=$(field "$f" '^mesh:' 2)
+  para "\`$build/bench_mesh${mesh_args:+ ${mesh_args[*]}}\`: a closed UV sphere of $(commas "$tris") triangles, and the Cornell box's 28" \
+       "primitives. Ray rates are per CPU-second on one thread, each the median of 5 passes taken in turn" \
+       "with the others; camera rays one at a time and as packets (the renderer traces one-ray-a-pixel" \
+       "images in 4×4-pixel packets and a pixel's supersamples together). Build times are wall times." \
+       "" \
+       "| figure | measured |" "|---|---:|" \
+       "| BVH build (validation, world vertices, BVH), 1 thread | $(awk '/1 thread:/ { print $(NF-2); exit }' "$f") s |" \
+       "| the same, 2 threads | $(awk '/2 threads:/ { print $(NF-2); exit }' "$f") s |" \
+       "| memory per triangle, geometry + BVH (+ the mesh data itself) | $(field "$f" '^memory:' 2) (+ $(awk '/^memory:/ { sub(/\)/, "", $NF); print $NF }' "$f")) bytes |" \
+       "| mesh camera rays, one at a time | $(field "$f" '^mesh primary rays:' 4) M/CPU-s |" \
+       "| mesh camera rays, 2×2-pixel packets | $(field "$f" 'in packets:' 8) M/CPU-s |" \
+       "| mesh camera rays, 4×4-pixel packets | $(awk '/in packets:/ { print $(NF-1); exit }' "$f") M/CPU-s |" \
+       "| mesh shadow rays | $(field "$f" '^mesh shadow rays:' 4) M/CPU-s |" \
+       "| Cornell box camera rays, BVH, one at a time / packets of 4 / of 16 | $(after cornell.BVH primary) / $(after cornell.BVH 4:) / $(after cornell.BVH 16:) M/CPU-s |" \
+       "| Cornell box shadow rays, BVH | $(after cornell.BVH shadow) M/CPU-s |" \
+       "| Cornell box camera / shadow rays, no BVH (every primitive) | $(after cornell.brute primary) / $(after cornell.brute shadow) M/CPU-s |"
+}
+
+# ---------------------------------------------------------------- parsing and loading
+parse_table() {
+  section "Parsing and loading"
+  local i
+  log "bench_parse ${parse_args[*]}, $runs run(s); bench_obj"
+  for ((i = 0; i < runs; i++)); do "$build/bench_parse" "${parse_args[@]}" >"$tmp/parse-$i.txt"; done
+  "$build/bench_obj" >"$tmp/obj.txt"
+  local mb tris
+  mb=$(field "$tmp/parse-0.txt" '^mesh.wsd +lex' 3)
+  tris=$(awk '/^mesh.wsd +load_scene/ { for (i = 1; i < NF; i++) if ($(i + 1) == "triangles") print $i; exit }' "$tmp/parse-0.txt")
+  # all REGEX N: the Nth field of the matching line of every run.
+  all() { cat "$tmp"/parse-*.txt | awk -v n="$2" "/$1/ { print \$n }"; }
+  para "\`$build/bench_parse${parse_args:+ ${parse_args[*]}}\` ($runs $( ((runs == 1)) && echo run || echo runs); median and range of one pass each, wall time):" \
+       "an inline mesh of $(commas "$tris") triangles ($mb MB of \`.wsd\` text), and a 100,000-sphere \`for\` loop." \
+       "\`$build/bench_obj\`: two 1,000,000-triangle OBJ files, the median of 3 loads." \
+       "" \
+       "| figure | measured |" "|---|---:|" \
+       "| inline mesh, lex + parse | $(all '^mesh.wsd +lex' 7 | median) MB/s ($(all '^mesh.wsd +lex' 7 | range)) |" \
+       "| inline mesh, whole scene load (no BVH) | $(all '^mesh.wsd +load_scene' 7 | median) MB/s ($(all '^mesh.wsd +load_scene' 7 | range)) |" \
+       "| peak memory per triangle, source text included (lex + parse / load) | $(all '^mesh.wsd +lex' 10 | median) / $(all '^mesh.wsd +load_scene' 15 | median) bytes |" \
+       "| 100,000-sphere \`for\` loop, whole scene load | $(all '^spheres.wsd +load_scene' 5 | median) s ($(all '^spheres.wsd +load_scene' 5 | range)) |" \
+       "| OBJ \`f a b c\`, $(field "$tmp/obj.txt" '^f v ' 7) MB | $(field "$tmp/obj.txt" '^f v ' 11) s wall, $(awk '/^f v / { print $(NF-2); exit }' "$tmp/obj.txt") s CPU |" \
+       "| OBJ \`f a/a/a\` with \`vt\` and \`vn\`, $(field "$tmp/obj.txt" '^f v\/vt' 7) MB | $(field "$tmp/obj.txt" '^f v\/vt' 11) s wall, $(awk '/^f v\/vt/ { print $(NF-2); exit }' "$tmp/obj.txt") s CPU |"
+}
+
+# ---------------------------------------------------------------- the page
+cornell_table
+adaptive_table
+bench_table
+threads_table
+mesh_table
+parse_table
+load_after=$(loadavg)
+
+model=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -1)
+compiler_version=$("${compiler:-c++}" --version 2>/dev/null | head -1 || true)
+build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -1)
+os=$(. /etc/os-release 2>/dev/null && echo "${PRETTY_NAME:-}")
+memory=$(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo)
+elapsed=$(($(date +%s) - start))
+# CPU time of this script and everything it ran (the second line of `times`: children).
+times >"$tmp/times"  # in this shell: a command substitution would time only its own subshell
+cpu=$(awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); s += 60 * t[1] + t[2] } printf "%d min %d s", s / 60, s % 60 }' "$tmp/times")
+{
+  echo "# Performance"
+  echo
+  echo "Measured by \`bench/performance.sh$( ((quick)) && echo " --quick")\` on $(date -u '+%Y-%m-%d %H:%M UTC') ($((elapsed / 60)) min $((elapsed % 60)) s of wall"
+  echo "time, $cpu of CPU time); every figure on this page is what that run printed. To measure"
+  echo "again on your machine: \`./setup.sh && bench/performance.sh\` (the page is rewritten)."
+  echo
+  echo "- Machine: ${model:-unknown processor}, $(nproc) cores (\`nproc\`), $memory memory; ${os:-unknown system}."
+  echo "- Build: ${build_type:-unknown} (\`$build/\`), ${compiler_version:-unknown compiler}, commit \`$commit\`."
+  echo "- Load average (1, 5, 15 min) before the run: $load_before; after: $load_after. On a shared machine"
+  echo "  wall times include waiting for a core: compare CPU-seconds, and ratios measured in the same run."
+  cat "$page"
+} >"$out.tmp"
+mv "$out.tmp" "$out"
+log "wrote $out in ${elapsed} s"
