@@ -3,6 +3,7 @@
 // keywords, punctuation; and every lexical error: NUL bytes, invalid UTF-8, stray characters.
 #include "lang/lexer.h"
 
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <limits>
@@ -53,6 +54,27 @@ std::string hex_byte(unsigned char b) {
     char buf[8];
     std::snprintf(buf, sizeof buf, "0x%02x", b);
     return buf;
+}
+
+// POV-Ray's directive after a '#' (its length, and wsd's spelling as help), or {0, general help}.
+std::pair<size_t, std::string> preprocessor_help(std::string_view rest) {
+    static const std::pair<std::string_view, std::string_view> directives[] = {
+        {"declare", "POV-Ray's '#declare NAME = ...' is 'let NAME = ...' in wsd"},
+        {"local", "POV-Ray's '#local NAME = ...' is 'let NAME = ...' in wsd (a let is local to its block)"},
+        {"include", "POV-Ray's '#include \"file\"' is 'include \"file\"' in wsd"},
+        {"if", "POV-Ray's '#if (c) ... #end' is 'if c { ... }' in wsd"},
+        {"for", "POV-Ray's '#for (i, a, b) ... #end' is 'for i in a .. b + 1 { ... }' in wsd"},
+        {"while", "wsd has no while loop: write 'for i in a .. b { ... }' or loop over a list"},
+        {"end", "wsd closes a loop or an 'if' with '}'"},
+        {"version", "wsd needs no version line"},
+    };
+    for (const auto& [word, help] : directives) {
+        if (rest.substr(0, word.size()) != word) continue;
+        const char next = rest.size() > word.size() ? rest[word.size()] : ' ';
+        if (!std::isalnum(static_cast<unsigned char>(next)) && next != '_')
+            return {word.size(), std::string(help)};
+    }
+    return {0, "there is no preprocessor: use let, for, if and include"};
 }
 
 std::string code_point_name(uint32_t cp) {
@@ -514,7 +536,21 @@ void Lexer::bad_bytes(uint32_t begin) {
     if (c == '|') help = "the logical or is '||'";
     if (c == '\'') help = "strings use double quotes";
     if (c == ';') help = "statements need no ';'";
-    if (c == '#') help = "there is no preprocessor: use let, for, if and include";
+    if (c == '#') {
+        // A POV-Ray directive is one error over `#word`, and the rest of its line is skipped, so
+        // that `#declare R = 2` is not reported again word by word.
+        auto [length, directive_help] = preprocessor_help(std::string_view(text_).substr(pos_));
+        if (length > 0) {
+            const auto word_end = static_cast<uint32_t>(pos_ + length);
+            error(begin, begin, word_end,
+                  "POV-Ray's directive " + quoted(text_.substr(begin, word_end - begin)) + " is not wsd",
+                  directive_help);
+            pos_ = word_end;
+            while (pos_ < text_.size() && text_[pos_] != '\n' && text_[pos_] != '\r') ++pos_;
+            return;
+        }
+        help = std::move(directive_help);
+    }
     error(begin, begin, pos_, "invalid character " + quoted(text_.substr(begin, 1)), help);
 }
 

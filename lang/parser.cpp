@@ -4,6 +4,7 @@
 // stack. Expressions, vectors and lists are in parse_expression.cpp.
 #include <limits>
 
+#include "lang/lower.h"
 #include "lang/parser_internal.h"
 
 namespace wsd::lang {
@@ -154,6 +155,8 @@ Stmt* Parser::parse_statement() {
             const std::string match = closest_match(word, statement_words);
             if (assign)
                 help = "to bind a name, write 'let " + word + " = ...'";
+            else if (word == "light_source")
+                help = "a light is written 'light point { position ... }' (or 'light area { ... }')";
             else if (!match.empty())
                 help = "did you mean '" + match + "'?";
         }
@@ -443,6 +446,11 @@ Item Parser::parse_item() {
 // `color rgb <1, 0, 0>` (a function name before a vector, which parses as `rgb < 1`, ...) and a
 // property with no value, `center radius 1` (where `radius` becomes the centre's value).
 ExprList Parser::parse_value_list(const Item& item) {
+    if (check(TokenKind::LBrace) && !item.name.empty() && !is_property_name(item.name)) {
+        // `pigment { ... }`: a word no block knows, with a POV-Ray block after it. The block is
+        // skipped and the block reader reports the unknown property with wsd's spelling.
+        return keep(std::vector<Expr*>{skip_braced_block()});
+    }
     if (!starts_expression(tok_.kind)) {
         if (item.name.empty())
             error_here("expected a value, found " + found());
@@ -466,6 +474,33 @@ ExprList Parser::parse_value_list(const Item& item) {
                               " is left over; write a value after '" + std::string(item.name) + "'");
     }
     return keep(values);
+}
+
+// Whether any block accepts `name` as a property (or a transform).
+bool Parser::is_property_name(std::string_view name) {
+    static const char* const tables[] = {"settings", "camera",   "light area", "light point",
+                                         "sphere",   "box",      "triangle",   "plane",
+                                         "mesh",     "material", "checker",    "perlin"};
+    if (name == "scale" || name == "rotate" || name == "translate") return true;
+    for (const char* t : tables)
+        if (block_table(t).find(name)) return true;
+    return false;
+}
+
+// Skips `{ ... }` with its nested braces, as one placeholder value; an unclosed one is an error.
+Expr* Parser::skip_braced_block() {
+    const Token open = tok_;
+    const uint32_t begin = tok_.begin;
+    int depth = 0;
+    do {
+        if (check(TokenKind::LBrace)) ++depth;
+        if (check(TokenKind::RBrace)) --depth;
+        advance();
+    } while (depth > 0 && !check(TokenKind::Eof));
+    if (depth > 0) unclosed(open, "expected '}' to close this block, found " + found());
+    Expr* bad = bad_here();
+    bad->span = span_from(begin);
+    return bad;
 }
 
 // `rgb <1, 0, 0>` or `srgb <...>` as an item's or a let's value: the colour functions written as

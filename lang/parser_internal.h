@@ -94,6 +94,8 @@ private:
     bool starts_vertex_list();
     Item parse_item();
     ExprList parse_value_list(const Item& item);
+    static bool is_property_name(std::string_view name);
+    Expr* skip_braced_block();
     bool colour_function_before_vector();
 
     // ---- expressions ----
