@@ -147,9 +147,10 @@ struct ShaftGather {
 
 }  // namespace
 
-bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
-                            RayStats& stats) const {
-    const Impl& g = *impl_;
+bool ShaftCandidates::gather(const Geometry& geom, const Shaft& shaft, const ShaftSelf& self,
+                             RayStats& stats) {
+    const Impl& g = geom.impl();
+    ShaftCandidates& out = *this;
     out.count = 0;
     out.blocked = false;
     out.transmissive = false;
@@ -174,24 +175,23 @@ bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCand
     return q.end != ShaftGather::End::Overflow;
 }
 
-bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
-                              RayStats& stats) const {
+bool ShaftCandidates::occluded(const Geometry& geom, const Ray& ray, double tmax, RayStats& stats) const {
     if (!ray_is_valid(ray, tmax)) {
         ++stats.rejected_rays;
         return false;
     }
     if (!(tmax > 0)) return false;
-    if (candidates.blocked) return true;
+    if (blocked) return true;
     if (const int s = direction_scale(ray.d); s != 0)
-        return occluded_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
-    const Impl& g = *impl_;
+        return occluded(geom, scaled(ray, s), std::ldexp(tmax, -s), stats);
+    const Impl& g = geom.impl();
     Counters c;
     bool hit = false;
     // Spheres in world space need only d·d; the rest the lazily made RayPre.
     LazyRayPre pre(ray);
     const double a = glm::dot(ray.d, ray.d), inv_a = 1.0 / a;
-    for (int k = 0; k < candidates.count && !hit; ++k) {
-        const uint32_t e = candidates.entries[k];
+    for (int k = 0; k < count && !hit; ++k) {
+        const uint32_t e = entries[k];
         const uint32_t kind = e >> kKindShift;
         double t, b1, b2;
         uint32_t prim;
@@ -212,24 +212,24 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     return hit;
 }
 
-std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candidates, const Ray& ray,
-                                                   double tmax, RayStats& stats) const {
+std::optional<HitRecord> ShaftCandidates::intersect_transmissive(const Geometry& geom, const Ray& ray,
+                                                                 double tmax, RayStats& stats) const {
     if (!ray_is_valid(ray, tmax)) {
         ++stats.rejected_rays;
         return std::nullopt;
     }
     if (!(tmax > 0)) return std::nullopt;
     if (const int s = direction_scale(ray.d); s != 0) {
-        auto hit = intersect_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
+        auto hit = intersect_transmissive(geom, scaled(ray, s), std::ldexp(tmax, -s), stats);
         if (hit) hit->t = std::ldexp(hit->t, s);
         return hit;
     }
-    const Impl& g = *impl_;
+    const Impl& g = geom.impl();
     Counters c;
     Best best{tmax};
     LazyRayPre pre(ray);
-    for (int k = 0; k < candidates.transmissive_count; ++k) {
-        const uint32_t e = candidates.transmissive_entries[k];
+    for (int k = 0; k < transmissive_count; ++k) {
+        const uint32_t e = transmissive_entries[k];
         double t, b1, b2;
         uint32_t prim;
         if ((e >> kKindShift) == kPlaneKind) {
