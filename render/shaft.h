@@ -1,7 +1,9 @@
 // Shaft culling for area-light shadow rays (Haines and Wallace, "Shaft Culling for Efficient
 // Ray-Traced Radiosity", 1991): every shadow ray from one shading point to the cells of one area
 // light lies in the convex shaft between the point and the light's parallelogram, so one walk of
-// the BVH against the shaft finds the few primitives any of those rays can meet.
+// the BVH against the shaft finds the few primitives any of those rays can meet
+// (ShaftCandidates), and each ray then tests only them. For the renderer's shadow rays; geometry.h
+// knows nothing of shafts.
 #pragma once
 
 #include <algorithm>

@@ -136,7 +136,9 @@ template <class Q>
                     index = next.first;
                     break;
                 }
-                if (q.leaf(next)) return true;
+                // With LeavesFirst only inner children wait: one call site, which the compiler inlines.
+                if constexpr (Q::kOrder != WalkOrder::LeavesFirst)
+                    if (q.leaf(next)) return true;
             }
             if (sp == 0) return false;
             next = stack[--sp];
