@@ -78,8 +78,9 @@ inline void float_bracket(double v, float& lo, float& hi) {
     const uint32_t bits = std::bit_cast<uint32_t>(f);
     const uint32_t sign = static_cast<uint32_t>(std::bit_cast<int32_t>(f) >> 31);  // all ones if negative
     const double back = static_cast<double>(f);
-    hi = std::bit_cast<float>(bits + (back < v ? (sign | 1u) : 0u));
-    lo = std::bit_cast<float>(bits + (back > v ? (~sign | 1u) : 0u));
+    const uint32_t up = 0u - static_cast<uint32_t>(back < v), down = 0u - static_cast<uint32_t>(back > v);
+    hi = std::bit_cast<float>(bits + ((sign | 1u) & up));  // masks, not selects: no branch
+    lo = std::bit_cast<float>(bits + ((~sign | 1u) & down));
 }
 
 // Per-ray constants of the slab test, and the test of the four boxes of a node at once.
