@@ -77,12 +77,14 @@ bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, 
     return shaft.clear_of_triangle(a, b, c, side);
 }
 
+// Adds an opaque candidate; false when there is no room left.
 bool add(ShaftCandidates& out, uint32_t e) {
     if (out.count == ShaftCandidates::kMax) return false;
     out.entries[out.count++] = e;
     return true;
 }
 
+// Notes a transmissive primitive that may meet the shaft, listing it while there is room.
 void add_transmissive(ShaftCandidates& out, uint32_t e) {
     out.transmissive = true;
     if (out.transmissive_count == ShaftCandidates::kMaxTransmissive)
