@@ -4,7 +4,6 @@
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -68,21 +67,6 @@ struct alignas(64) Bvh4Node {
 };
 static_assert(sizeof(Bvh4Node) == 128);
 
-// to_float_down(v) and to_float_up(v) at once, bit for bit, without their branches: for ray
-// origins the rounding to nearest goes either way about half the time, and a mispredicted branch
-// costs more than the arithmetic. One step up adds 1 to the bits of a float ≥ +0 and −1 to those
-// of a negative one, down the reverse; the cases next_float_* treats apart (+inf up, −inf down,
-// −0 up, +0 down) cannot need a step here.
-inline void float_bracket(double v, float& lo, float& hi) {
-    const float f = static_cast<float>(v);
-    const uint32_t bits = std::bit_cast<uint32_t>(f);
-    const uint32_t sign = static_cast<uint32_t>(std::bit_cast<int32_t>(f) >> 31);  // all ones if negative
-    const double back = static_cast<double>(f);
-    const uint32_t up = 0u - static_cast<uint32_t>(back < v), down = 0u - static_cast<uint32_t>(back > v);
-    hi = std::bit_cast<float>(bits + ((sign | 1u) & up));  // masks, not selects: no branch
-    lo = std::bit_cast<float>(bits + ((~sign | 1u) & down));
-}
-
 // Per-ray constants of the slab test, and the test of the four boxes of a node at once.
 struct RayBoxTest {
     float o_near[3], o_far[3], inv[3];
@@ -102,8 +86,7 @@ struct RayBoxTest {
             bool neg = std::signbit(d[a]);
             // The near plane is the lower bound when d > 0: its distance is underestimated by
             // taking the origin rounded up, the far one's overestimated by rounding it down.
-            float lo, hi;
-            float_bracket(o[a], lo, hi);
+            float lo = to_float_down(o[a]), hi = to_float_up(o[a]);
             o_near[a] = neg ? lo : hi;
             o_far[a] = neg ? hi : lo;
             inv[a] = static_cast<float>(rec[a]);
