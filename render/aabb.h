@@ -3,11 +3,8 @@
 // conservative, tFar is widened by 1 + 2γ₃, and NaN slabs (0·∞) lose every comparison.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <vector>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -133,32 +130,6 @@ struct RayBoxTest {
 #endif
     }
 };
-
-// The power of two that brings a direction's largest component into [2^-64, 2^64], or 0 when
-// it is there already. The slab test keeps 1/d in floats, which vanish past about 1e38 (every box,
-// even an empty one, would then be entered) and overflow below about 1e-38; scaling by a power
-// of two is exact, and every test is covariant with it, so the answers do not change.
-inline int direction_scale(const Vec3& d) {
-    const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
-    if (m >= 0x1p-64 && m <= 0x1p64) return 0;
-    int e = 0;
-    (void)std::frexp(m, &e);
-    return -e;
-}
-
-// Boxes four to a node (unused lanes empty, first and count zero), so that RayBoxTest::hit4
-// tests a ray against four at a time.
-inline std::vector<Bvh4Node> pack4(const std::vector<Bounds3f>& boxes) {
-    std::vector<Bvh4Node> out((boxes.size() + 3) / 4);
-    for (size_t k = 0; k < 4 * out.size(); ++k) {
-        const Bounds3f b = k < boxes.size() ? boxes[k] : Bounds3f{};
-        for (int a = 0; a < 3; ++a) {
-            out[k / 4].lo[a][k % 4] = b.lo[a];
-            out[k / 4].hi[a][k % 4] = b.hi[a];
-        }
-    }
-    return out;
-}
 
 #if defined(__SSE2__)
 // RayBoxTest::init's o_near, o_far and inv for four rays at once (lane k: ray k), bit for bit,

@@ -61,7 +61,17 @@ inline bool ray_is_valid(const Ray& r, double tmax) {
     return is_finite(r.o) && is_finite(r.d) && (r.d.x != 0 || r.d.y != 0 || r.d.z != 0) && !std::isnan(tmax);
 }
 
-// The ray with its direction scaled by 2^s (see direction_scale in aabb.h).
+// The power of two that brings a direction's largest component into [2^-64, 2^64], or 0 when
+// it is there already. Traversal keeps 1/d in floats, which vanish past about 1e38 (every box,
+// even an empty one, would then be entered) and overflow below about 1e-38; scaling by a power
+// of two is exact, and every test is covariant with it, so the answers do not change.
+inline int direction_scale(const Vec3& d) {
+    const double m = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (m >= 0x1p-64 && m <= 0x1p64) return 0;
+    int e = 0;
+    (void)std::frexp(m, &e);
+    return -e;
+}
 inline Ray scaled(const Ray& r, int s) {
     return {r.o, {std::ldexp(r.d.x, s), std::ldexp(r.d.y, s), std::ldexp(r.d.z, s)}};
 }

@@ -65,26 +65,29 @@ void add_box_corners(const Mat4& m, const Vec3& lo, const Vec3& hi, Vec3& out_lo
 
 bool Scene::may_cross_transmissive(const Vec3& a, const Vec3& b) const {
     if (transmissive_unbounded_) return true;
-    // The segment is the ray a + t·(b − a), 0 ≤ t ≤ 1, under the BVH's slab test: conservative,
-    // so a box the segment meets is never missed (its direction scaled as traversal scales it).
-    Vec3 d = b - a;
-    double tmax = 1;
-    if (const int s = direction_scale(d); s != 0) {
-        d = {std::ldexp(d.x, s), std::ldexp(d.y, s), std::ldexp(d.z, s)};
-        tmax = std::ldexp(tmax, -s);
+    const Vec3 d = b - a;
+    for (const Bounds& box : transmissive_bounds_) {
+        double t0 = 0, t1 = 1;
+        bool hit = true;
+        for (int i = 0; i < 3 && hit; ++i) {
+            if (d[i] == 0) {
+                hit = a[i] >= box.lo[i] && a[i] <= box.hi[i];
+                continue;
+            }
+            const double inv = 1.0 / d[i];
+            double n = (box.lo[i] - a[i]) * inv, f = (box.hi[i] - a[i]) * inv;
+            if (n > f) std::swap(n, f);
+            t0 = n > t0 ? n : t0;
+            t1 = f < t1 ? f : t1;
+            hit = t0 <= t1;
+        }
+        if (hit) return true;
     }
-    RayBoxTest segment;
-    segment.init(a, d);
-    const float limit = to_float_up(tmax);
-    alignas(16) float t_entry[4];
-    for (const Bvh4Node& boxes : transmissive_boxes_)
-        if (segment.hit4(boxes, limit, t_entry) != 0) return true;
     return false;
 }
 
 void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
     constexpr size_t kMaxBoxes = 16;  // beyond this, one union box (the test is linear)
-    std::vector<Bounds3f> boxes;
     for (const ShapeSpec& sh : spec.shapes) {
         if (!(spec.materials[sh.material].transmission > 0)) continue;
         Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
@@ -117,14 +120,17 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
         // Pad by a relative margin far above the rounding of the shapes' own intersection code,
         // so the culling box is conservative (it only decides whether to look, never the result).
         const Vec3 pad = (glm::abs(lo) + glm::abs(hi) + (hi - lo)) * 1e-7;
-        boxes.push_back(Bounds3f::around(lo - pad, hi + pad));
+        transmissive_bounds_.push_back({lo - pad, hi + pad});
     }
+    auto& boxes = transmissive_bounds_;
     if (boxes.size() > kMaxBoxes) {
-        Bounds3f all;
-        for (const Bounds3f& b : boxes) all.extend(b);
+        Bounds all = boxes.front();
+        for (const auto& b : boxes) {
+            all.lo = glm::min(all.lo, b.lo);
+            all.hi = glm::max(all.hi, b.hi);
+        }
         boxes.assign(1, all);
     }
-    transmissive_boxes_ = pack4(boxes);
 }
 
 std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,

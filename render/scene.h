@@ -6,7 +6,6 @@
 #include <memory>
 #include <vector>
 
-#include "render/aabb.h"
 #include "render/camera.h"
 #include "render/effects.h"
 #include "render/geometry.h"
@@ -54,9 +53,11 @@ private:
     std::vector<Material> materials_;
     std::vector<Mat4> object_to_world_;
     EffectSet effects_;
-    // World boxes, padded, rounded outwards to floats, four to a node; merged when there are many.
-    std::vector<Bvh4Node> transmissive_boxes_;
-    bool transmissive_unbounded_ = false;  // a transmissive plane: always walk
+    struct Bounds {
+        Vec3 lo, hi;
+    };
+    std::vector<Bounds> transmissive_bounds_;  // world boxes, padded; merged when there are many
+    bool transmissive_unbounded_ = false;      // a transmissive plane: always walk
     bool multi_cell_area_light_ = false;
     double build_seconds_ = 0;
 };

@@ -1,7 +1,7 @@
 // The shared BVH walk (render/traverse.h) on trees of random boxes: every order visits exactly
 // the leaves a brute-force slab test over all leaf boxes selects, each once; a leaf that ends the
 // walk ends it; a nearest-first walk that shrinks its limit finds the nearest leaf while skipping
-// others. And Scene::may_cross_transmissive, which tests segments with the same slab test.
+// others. And Scene::may_cross_transmissive's segment test: conservative, and it culls.
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
