@@ -2,12 +2,12 @@
 // the surface data of a hit, and error-bounded spawn origins (pbrt-v4 OffsetRayOrigin). Ties in
 // t resolve to the lowest canonical primitive id, so BVH and brute force agree bit for bit.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <thread>
 
 #include "render/geometry_impl.h"
 #include "render/prim_test.h"
+#include "render/traverse.h"
 
 namespace wsd::render {
 
@@ -20,97 +20,81 @@ namespace {
 
 using namespace detail;
 
-struct StackEntry {
-    uint32_t first, count;
-    float t;
-};
-// Each level of the 4-wide tree pushes at most three entries.
-constexpr int kStackSize = 3 * kMaxBvhDepth + 1;
-
-// The children of `node` that the ray enters, nearest first in out[0]; returns their number.
-inline int entered_children(const Bvh4Node& node, int mask, const float* tn, StackEntry* out) {
-    int m = 0;
-    while (mask != 0) {
-        const int i = std::countr_zero(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        StackEntry e{node.first[i], node.count[i], tn[i]};
-        int j = m++;
-        while (j > 0 && out[j - 1].t > e.t) {
-            out[j] = out[j - 1];
-            --j;
-        }
-        out[j] = e;
+// The primitives of order[first, first + count) that pass the filter, into the running closest hit.
+// Called, not inlined, from the walk: with the primitive tests inlined into its loop, the loop
+// spills registers and closest hits were measured slower.
+template <int kFilter>
+[[gnu::noinline]] void closest_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, Best& best,
+                                  Counters& c) {
+    for (uint32_t k = first; k < first + count; ++k) {
+        const uint32_t e = g.order[k];
+        if (!passes<kFilter>(e)) continue;
+        double t, b1, b2;
+        uint32_t prim;
+        if (test_entry(g, r, e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
     }
-    return m;
 }
+
+// True when one of the primitives of order[first, first + count) that pass the filter is hit.
+template <int kFilter>
+[[gnu::noinline]] bool any_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, double tmax,
+                              Counters& c) {
+    for (uint32_t k = first; k < first + count; ++k) {
+        const uint32_t e = g.order[k];
+        if (!passes<kFilter>(e)) continue;
+        double t, b1, b2;
+        uint32_t prim;
+        if (test_entry(g, r, e, tmax, c, t, prim, b1, b2)) return true;
+    }
+    return false;
+}
+
+// The BVH walk of a closest-hit query: nearest child first, waiting children pruned by the
+// running hit's distance (in floats, rounded up).
+template <int kFilter>
+struct ClosestHit {
+    static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
+    using Child = BvhChild;
+    const Impl& g;
+    const RayPre& r;
+    Best& best;
+    Counters& c;
+    float limit;
+
+    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
+    bool leaf(const Child& e) {
+        closest_in<kFilter>(g, r, e.first, e.count, best, c);
+        limit = to_float_up(best.limit);
+        return false;
+    }
+    bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
+};
+
+// The walk of an any-hit query: depth first, ended by the first hit.
+template <int kFilter>
+struct AnyHit {
+    static constexpr WalkOrder kOrder = WalkOrder::DepthFirst;
+    using Child = BvhChild;
+    const Impl& g;
+    const RayPre& r;
+    double tmax;
+    Counters& c;
+    float limit;
+
+    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
+    bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
+};
 
 template <int kFilter>
 void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
-    auto leaf = [&](uint32_t first, uint32_t count) [[gnu::always_inline]] {
-        for (uint32_t k = first; k < first + count; ++k) {
-            uint32_t e = g.order[k];
-            if (!passes<kFilter>(e)) continue;
-            double t, b1, b2;
-            uint32_t prim;
-            if (test_entry(g, r, e, best.limit, c, t, prim, b1, b2))
-                best.offer(t, prim, e & kSlotMask, b1, b2);
-        }
-    };
     if (g.nodes.empty()) {
-        leaf(0, static_cast<uint32_t>(g.order.size()));
+        closest_in<kFilter>(g, r, 0, static_cast<uint32_t>(g.order.size()), best, c);
         return;
     }
-    const Bvh4Node* nodes = g.nodes.data();
-    float limit_f = to_float_up(best.limit);
-    StackEntry stack[kStackSize];
-    int sp = 0;
-    uint32_t ni = 0;
+    ClosestHit<kFilter> q{g, r, best, c, to_float_up(best.limit)};
     uint64_t visits = 0;  // counted in a register, added to c once
-    for (;;) {
-        const Bvh4Node& node = nodes[ni];
-        alignas(16) float tn[4];
-        const int mask = r.box.hit4(node, limit_f, tn);
-        ++visits;
-        StackEntry next{};
-        bool have = mask != 0;
-        if (have) {
-            // Nearest child next; the others wait, farthest deepest, with their entry distances
-            // for pruning once a hit shortens the ray. One or two children (the common cases)
-            // need no sorting loop.
-            const int i = std::countr_zero(static_cast<unsigned>(mask));
-            const int rest = mask & (mask - 1);
-            if (rest == 0) {
-                next = {node.first[i], node.count[i], tn[i]};
-            } else if ((rest & (rest - 1)) == 0) {
-                const int j = std::countr_zero(static_cast<unsigned>(rest));
-                const bool swap = tn[j] < tn[i];
-                const int near = swap ? j : i, far = swap ? i : j;
-                stack[sp++] = {node.first[far], node.count[far], tn[far]};
-                next = {node.first[near], node.count[near], tn[near]};
-            } else {
-                StackEntry e[4];
-                const int m = entered_children(node, mask, tn, e);
-                for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
-                next = e[0];
-            }
-        }
-        for (;;) {
-            if (have) {
-                if (next.count == 0) {
-                    ni = next.first;
-                    break;
-                }
-                leaf(next.first, next.count);
-                limit_f = to_float_up(best.limit);
-            }
-            if (sp == 0) {
-                c.boxes += 4 * visits;
-                return;
-            }
-            next = stack[--sp];
-            have = next.t <= limit_f * RayBoxTest::kWiden;
-        }
-    }
+    walk_bvh(g.nodes.data(), q, visits);
+    c.boxes += 4 * visits;
 }
 
 template <int kFilter>
@@ -123,48 +107,12 @@ bool any_hit(const Impl& g, const Ray& ray, const RayPre& r, double tmax, Counte
         double t;
         if (intersect_plane(ray.o, ray.d, p, tmax, t)) return true;
     }
-    auto leaf = [&](uint32_t first, uint32_t count) {
-        for (uint32_t k = first; k < first + count; ++k) {
-            uint32_t e = g.order[k];
-            if (!passes<kFilter>(e)) continue;
-            double t, b1, b2;
-            uint32_t prim;
-            if (test_entry(g, r, e, tmax, c, t, prim, b1, b2)) return true;
-        }
-        return false;
-    };
-    if (g.nodes.empty()) return leaf(0, static_cast<uint32_t>(g.order.size()));
-    const Bvh4Node* nodes = g.nodes.data();
-    const float limit_f = to_float_up(tmax);
-    StackEntry stack[kStackSize];
-    int sp = 0;
-    uint32_t ni = 0;
+    if (g.nodes.empty()) return any_in<kFilter>(g, r, 0, static_cast<uint32_t>(g.order.size()), tmax, c);
+    AnyHit<kFilter> q{g, r, tmax, c, to_float_up(tmax)};
     uint64_t visits = 0;
-    for (;;) {
-        const Bvh4Node& node = nodes[ni];
-        alignas(16) float tn[4];
-        int mask = r.box.hit4(node, limit_f, tn);
-        ++visits;
-        for (; mask != 0; mask &= mask - 1) {
-            const int i = std::countr_zero(static_cast<unsigned>(mask));
-            stack[sp++] = {node.first[i], node.count[i], 0};
-        }
-        for (;;) {
-            if (sp == 0) {
-                c.boxes += 4 * visits;
-                return false;
-            }
-            const StackEntry next = stack[--sp];
-            if (next.count == 0) {
-                ni = next.first;
-                break;
-            }
-            if (leaf(next.first, next.count)) {
-                c.boxes += 4 * visits;
-                return true;
-            }
-        }
-    }
+    const bool hit = walk_bvh(g.nodes.data(), q, visits);
+    c.boxes += 4 * visits;
+    return hit;
 }
 
 }  // namespace

@@ -45,32 +45,6 @@ struct SurfaceHit {
 // Which primitives a query sees; shadow rays skip transmissive ones and then walk them in order.
 enum class RayFilter : uint8_t { All, OpaqueOnly, TransmissiveOnly };
 
-class Shaft;
-
-// The opaque primitives that the shadow rays of one shading point towards one area light may
-// meet (Geometry::gather_shaft), so that each of those rays tests only them.
-struct ShaftCandidates {
-    static constexpr int kMax = 32;  // more than this: not worth it, trace each ray in full
-    uint32_t entries[kMax];
-    int count = 0;
-    bool transmissive = false;  // some transmissive primitive may meet the shaft
-    bool blocked = false;       // an opaque sphere meets every ray: all are blocked (Shaft::blocks_all)
-    // The transmissive primitives that may meet it, when there are at most kMaxTransmissive
-    // (transmissive_listed): the walk through glass then tests only them.
-    static constexpr int kMaxTransmissive = 8;
-    uint32_t transmissive_entries[kMaxTransmissive];
-    int transmissive_count = 0;
-    bool transmissive_listed = false;
-};
-
-// The surface the shadow rays of a shaft leave: its primitive and geometric normal, and which
-// side of it the rays start on (+1 along ng, −1 against it, 0 when they do not share one origin).
-struct ShaftSelf {
-    uint32_t prim = 0xffffffffu;
-    Vec3 ng{0};
-    int ng_side = 0;
-};
-
 class Geometry {
 public:
     // Builds world-space primitives and the BVH. Appends an error for every degenerate input
@@ -93,21 +67,6 @@ public:
                           std::optional<HitRecord>* out) const;
     SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
-    // Collects the opaque primitives (planes included) that shadow rays inside `shaft` may meet:
-    // those in BVH leaves that meet it, less those a finer test clears (Shaft::outside_*,
-    // clear_of_*); `self` is the surface the rays leave. False when there is no BVH or more than
-    // ShaftCandidates::kMax of them: then use occluded() for each ray.
-    bool gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out, RayStats& stats) const;
-    // occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the shaft the
-    // candidates were gathered for: the same answer, testing only those primitives (none when
-    // the shaft is known to be blocked).
-    bool occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
-                        RayStats& stats) const;
-    // intersect(ray, tmax, stats, RayFilter::TransmissiveOnly) for a ray inside the shaft, when
-    // candidates.transmissive_listed: the same hit, testing only the listed primitives.
-    std::optional<HitRecord> intersect_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
-                                             RayStats& stats) const;
-
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);
 
@@ -116,7 +75,10 @@ public:
     bool has_transmissive() const;
     size_t memory_bytes() const;  // primitives and BVH
 
+    // The primitives and the BVH (geometry_impl.h), for render's own queries beyond these
+    // (shadow shafts: shaft.h).
     struct Impl;
+    const Impl& impl() const { return *impl_; }
 
 private:
     explicit Geometry(std::unique_ptr<Impl> impl);

@@ -1,5 +1,6 @@
-// Geometry's private state, shared by geometry_build.cpp (validation and construction) and
-// geometry.cpp (queries and surface data). Not part of the public interface.
+// Geometry's private state, shared by geometry_build.cpp (validation and construction) and the
+// queries (geometry.cpp, geometry_packet.cpp, geometry_shadow.cpp, geometry_surface.cpp), which
+// walk its BVH with walk_bvh (traverse.h). Not part of the public interface.
 #pragma once
 
 #include <memory>

@@ -13,6 +13,7 @@
 
 #include "render/geometry_impl.h"
 #include "render/prim_test.h"
+#include "render/traverse.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -25,16 +26,7 @@ namespace {
 
 using namespace detail;
 
-// A subtree waiting on the stack: the packet's entry distance (the least over its rays) and,
-// for a leaf, where its box is (child `box & 3` of node `box >> 2`), so that each ray's own
-// slab test can be made when the leaf is reached.
-struct PacketEntry {
-    uint32_t first, count;
-    float t;
-    uint32_t box;
-};
-constexpr int kPacketStack = 3 * kMaxBvhDepth + 1;
-// Fewer nodes than primitives, so a node index times 4 fits in 32 bits.
+// Fewer nodes than primitives, so a node index times 4 fits in 32 bits (BvhChildAt::box).
 static_assert(kMaxPrimitives <= (size_t{1} << 30));
 
 // Q groups of four rays (lanes = rays; ray 4q + k is lane k of group q).
@@ -93,14 +85,30 @@ struct Packet {
     }
 };
 
+// The packet's BVH walk: nearest child first by the packet's interval test (bound4); at a leaf,
+// each ray's own slab test picks the rays whose primitives are tested. Rays whose lane in `live`
+// is clear have limit −1 and enter nothing.
 template <int Q>
-void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
-    constexpr int kRays = 4 * Q;
+struct PacketClosestHit {
+    static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
+    static constexpr int kRays = 4 * Q;
+    using Child = BvhChildAt;
+    const Impl& g;
+    const Packet<Q>& p;
+    Best* best;
+    Counters& c;
     alignas(16) float lim[kRays];
-    for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
     __m128 limit[Q];
     float limit_max = -1;
-    auto load_limits = [&] {
+    uint64_t leaf_boxes = 0;
+
+    PacketClosestHit(const Impl& g_, const Packet<Q>& p_, Best* best_, uint32_t live, Counters& c_)
+        : g(g_), p(p_), best(best_), c(c_) {
+        for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
+        load_limits();
+    }
+
+    void load_limits() {
         __m128 m = _mm_set1_ps(-1.0f);
         for (int q = 0; q < Q; ++q) {
             limit[q] = _mm_load_ps(lim + 4 * q);
@@ -108,14 +116,16 @@ void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t 
         }
         m = _mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
         limit_max = _mm_cvtss_f32(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1))));
-    };
-    load_limits();
-    const Bvh4Node* nodes = g.nodes.data();
-    uint64_t visits = 0, leaf_boxes = 0;
-    auto leaf = [&](const PacketEntry& e) {
+    }
+
+    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return p.bound4(node, limit_max, tn); }
+    bool open(float t) const { return t <= limit_max * RayBoxTest::kWiden; }
+
+    bool leaf(const Child& e) {
+        const Bvh4Node* nodes = g.nodes.data();
         const uint32_t lanes = p.rays_in(&nodes[e.box >> 2].lo[0][0], static_cast<int>(e.box & 3), limit);
         leaf_boxes += Q;
-        if (lanes == 0) return;
+        if (lanes == 0) return false;
         // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
         // fetched once. Each ray still meets the primitives in order (not that it matters: the
         // closest hit with ties to the lowest id does not depend on the order).
@@ -145,50 +155,16 @@ void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t 
             lim[k] = to_float_up(best[k].limit);
         }
         load_limits();
-    };
-    PacketEntry stack[kPacketStack];
-    int sp = 0;
-    uint32_t ni = 0;
-    for (;;) {
-        const Bvh4Node& node = nodes[ni];
-        alignas(16) float tn[4];
-        int mask = p.bound4(node, limit_max, tn);
-        ++visits;
-        // Entered children, nearest first; the others wait, farthest deepest.
-        PacketEntry e[4];
-        int m = 0;
-        for (; mask != 0; mask &= mask - 1) {
-            const int i = std::countr_zero(static_cast<unsigned>(mask));
-            PacketEntry x{node.first[i], node.count[i], tn[i], ni << 2 | static_cast<uint32_t>(i)};
-            int j = m++;
-            while (j > 0 && e[j - 1].t > x.t) {
-                e[j] = e[j - 1];
-                --j;
-            }
-            e[j] = x;
-        }
-        bool have = m > 0;
-        PacketEntry next{};
-        if (have) {
-            for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
-            next = e[0];
-        }
-        for (;;) {
-            if (have) {
-                if (next.count == 0) {
-                    ni = next.first;
-                    break;
-                }
-                leaf(next);
-            }
-            if (sp == 0) {
-                c.boxes += 4 * (visits + leaf_boxes);
-                return;
-            }
-            next = stack[--sp];
-            have = next.t <= limit_max * RayBoxTest::kWiden;
-        }
+        return false;
     }
+};
+
+template <int Q>
+void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
+    PacketClosestHit<Q> q(g, p, best, live, c);
+    uint64_t visits = 0;
+    walk_bvh(g.nodes.data(), q, visits);
+    c.boxes += 4 * (visits + q.leaf_boxes);
 }
 
 // All four lanes set to the least (most) of x's lanes.

@@ -10,6 +10,7 @@
 #include "render/geometry_impl.h"
 #include "render/prim_test.h"
 #include "render/shaft.h"
+#include "render/traverse.h"
 
 namespace wsd::render {
 
@@ -76,105 +77,123 @@ bool culled(const Geometry::Impl& g, const Shaft& shaft, const ShaftSelf& self, 
     return shaft.clear_of_triangle(a, b, c, side);
 }
 
+// Adds an opaque candidate; false when there is no room left.
+bool add(ShaftCandidates& out, uint32_t e) {
+    if (out.count == ShaftCandidates::kMax) return false;
+    out.entries[out.count++] = e;
+    return true;
+}
+
+// Notes a transmissive primitive that may meet the shaft, listing it while there is room.
+void add_transmissive(ShaftCandidates& out, uint32_t e) {
+    out.transmissive = true;
+    if (out.transmissive_count == ShaftCandidates::kMaxTransmissive)
+        out.transmissive_listed = false;
+    else
+        out.transmissive_entries[out.transmissive_count++] = e;
+}
+
+// The shaft's BVH walk: a child is entered unless its box lies outside the shaft; a leaf's
+// primitives go to the candidates, and the walk ends when a sphere blocks every ray or the
+// candidates overflow. Leaves first, so that a node's primitives are gathered in lane order.
+struct ShaftGather {
+    enum class End { Walked, Blocked, Overflow };
+    static constexpr WalkOrder kOrder = WalkOrder::LeavesFirst;
+    using Child = BvhChild;
+    const Impl& g;
+    const Shaft& shaft;
+    const ShaftSelf& self;
+    ShaftCandidates& out;
+    uint64_t boxes = 0;  // boxes tested: the non-empty lanes of the nodes visited
+    End end = End::Walked;
+
+    int enter(const Bvh4Node& node, uint32_t, float* tn) {
+        int mask = 0;
+        for (int i = 0; i < 4; ++i) {
+            tn[i] = 0;
+            const float lo[3] = {node.lo[0][i], node.lo[1][i], node.lo[2][i]};
+            const float hi[3] = {node.hi[0][i], node.hi[1][i], node.hi[2][i]};
+            if (!(lo[0] <= hi[0])) continue;  // an unused lane
+            ++boxes;
+            if (!shaft.outside(lo, hi)) mask |= 1 << i;
+        }
+        return mask;
+    }
+
+    bool leaf(const Child& c) {
+        for (uint32_t k = c.first; k < c.first + c.count; ++k) {
+            const uint32_t e = g.order[k];
+            if (g.has_transmissive && !passes<1>(e)) {
+                // Shadow rays walk the transmissive primitives separately, from points along
+                // the ray: note whether one may lie in the shaft (side tests assume the rays'
+                // own origin, so only the shaft's planes may clear it).
+                if (!outside_shaft(g, shaft, e)) add_transmissive(out, e);
+                continue;
+            }
+            if (culled(g, shaft, self, e)) continue;
+            if (((e >> kKindShift) & 3u) == uint32_t(PrimKind::Sphere)) {
+                const SpherePrim& ball = g.spheres[e & kSlotMask];
+                if (ball.xform == kNoTransform && shaft.blocks_all(ball.center, ball.radius)) {
+                    end = End::Blocked;
+                    return true;
+                }
+            }
+            if (!add(out, e)) {
+                end = End::Overflow;
+                return true;
+            }
+        }
+        return false;
+    }
+};
+
 }  // namespace
 
-bool Geometry::gather_shaft(const Shaft& shaft, const ShaftSelf& self, ShaftCandidates& out,
-                            RayStats& stats) const {
-    const Impl& g = *impl_;
+bool ShaftCandidates::gather(const Geometry& geom, const Shaft& shaft, const ShaftSelf& self,
+                             RayStats& stats) {
+    const Impl& g = geom.impl();
+    ShaftCandidates& out = *this;
     out.count = 0;
     out.blocked = false;
     out.transmissive = false;
     out.transmissive_count = 0;
     out.transmissive_listed = true;
     if (g.nodes.empty()) return false;
-    auto add = [&](uint32_t e) {
-        if (out.count == ShaftCandidates::kMax) return false;
-        out.entries[out.count++] = e;
-        return true;
-    };
-    auto add_transmissive = [&](uint32_t e) {
-        out.transmissive = true;
-        if (out.transmissive_count == ShaftCandidates::kMaxTransmissive)
-            out.transmissive_listed = false;
-        else
-            out.transmissive_entries[out.transmissive_count++] = e;
-    };
     for (size_t i = 0; i < g.planes.size(); ++i) {
         const PlanePrim& p = g.planes[i];
         if (g.has_transmissive && p.transmissive != 0) {
-            add_transmissive((kPlaneKind << kKindShift) | static_cast<uint32_t>(i));
+            add_transmissive(out, (kPlaneKind << kKindShift) | static_cast<uint32_t>(i));
             continue;
         }
         const int side = (p.prim == self.prim && self.ng_side != 0) ? self_side(p.n, self) : 0;
         if (shaft.clear_of_plane(p.n, p.c, side)) continue;
-        if (!add((kPlaneKind << kKindShift) | static_cast<uint32_t>(i))) return false;
+        if (!add(out, (kPlaneKind << kKindShift) | static_cast<uint32_t>(i))) return false;
     }
-    uint32_t stack[4 * kMaxBvhDepth + 4];  // each level pushes at most four children
-    int sp = 0;
-    uint32_t ni = 0;
-    uint64_t boxes = 0;
-    bool fits = true;
-    for (;;) {
-        const Bvh4Node& node = g.nodes[ni];
-        for (int i = 0; i < 4 && fits; ++i) {
-            const float lo[3] = {node.lo[0][i], node.lo[1][i], node.lo[2][i]};
-            const float hi[3] = {node.hi[0][i], node.hi[1][i], node.hi[2][i]};
-            if (!(lo[0] <= hi[0])) continue;  // an unused lane
-            ++boxes;
-            if (shaft.outside(lo, hi)) continue;
-            if (node.count[i] == 0) {
-                stack[sp++] = node.first[i];
-                continue;
-            }
-            for (uint32_t k = node.first[i]; k < node.first[i] + node.count[i]; ++k) {
-                const uint32_t e = g.order[k];
-                if (g.has_transmissive && !passes<1>(e)) {
-                    // Shadow rays walk the transmissive primitives separately, from points
-                    // along the ray: note whether one may lie in the shaft (side tests assume
-                    // the rays' own origin, so only the shaft's planes may clear it).
-                    if (!outside_shaft(g, shaft, e)) add_transmissive(e);
-                    continue;
-                }
-                if (culled(g, shaft, self, e)) continue;
-                if (((e >> kKindShift) & 3u) == uint32_t(PrimKind::Sphere)) {
-                    const SpherePrim& ball = g.spheres[e & kSlotMask];
-                    if (ball.xform == kNoTransform && shaft.blocks_all(ball.center, ball.radius)) {
-                        out.blocked = true;
-                        stats.box_tests += boxes;
-                        return true;
-                    }
-                }
-                if (!add(e)) {
-                    fits = false;
-                    break;
-                }
-            }
-        }
-        if (!fits || sp == 0) break;
-        ni = stack[--sp];
-    }
-    stats.box_tests += boxes;
-    return fits;
+    ShaftGather q{g, shaft, self, out};
+    uint64_t visits = 0;
+    walk_bvh(g.nodes.data(), q, visits);
+    stats.box_tests += q.boxes;
+    out.blocked = q.end == ShaftGather::End::Blocked;
+    return q.end != ShaftGather::End::Overflow;
 }
 
-bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray, double tmax,
-                              RayStats& stats) const {
+bool ShaftCandidates::occluded(const Geometry& geom, const Ray& ray, double tmax, RayStats& stats) const {
     if (!ray_is_valid(ray, tmax)) {
         ++stats.rejected_rays;
         return false;
     }
     if (!(tmax > 0)) return false;
-    if (candidates.blocked) return true;
+    if (blocked) return true;
     if (const int s = direction_scale(ray.d); s != 0)
-        return occluded_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
-    const Impl& g = *impl_;
+        return occluded(geom, scaled(ray, s), std::ldexp(tmax, -s), stats);
+    const Impl& g = geom.impl();
     Counters c;
     bool hit = false;
     // Spheres in world space need only d·d; the rest the lazily made RayPre.
     LazyRayPre pre(ray);
     const double a = glm::dot(ray.d, ray.d), inv_a = 1.0 / a;
-    for (int k = 0; k < candidates.count && !hit; ++k) {
-        const uint32_t e = candidates.entries[k];
+    for (int k = 0; k < count && !hit; ++k) {
+        const uint32_t e = entries[k];
         const uint32_t kind = e >> kKindShift;
         double t, b1, b2;
         uint32_t prim;
@@ -195,24 +214,24 @@ bool Geometry::occluded_among(const ShaftCandidates& candidates, const Ray& ray,
     return hit;
 }
 
-std::optional<HitRecord> Geometry::intersect_among(const ShaftCandidates& candidates, const Ray& ray,
-                                                   double tmax, RayStats& stats) const {
+std::optional<HitRecord> ShaftCandidates::intersect_transmissive(const Geometry& geom, const Ray& ray,
+                                                                 double tmax, RayStats& stats) const {
     if (!ray_is_valid(ray, tmax)) {
         ++stats.rejected_rays;
         return std::nullopt;
     }
     if (!(tmax > 0)) return std::nullopt;
     if (const int s = direction_scale(ray.d); s != 0) {
-        auto hit = intersect_among(candidates, scaled(ray, s), std::ldexp(tmax, -s), stats);
+        auto hit = intersect_transmissive(geom, scaled(ray, s), std::ldexp(tmax, -s), stats);
         if (hit) hit->t = std::ldexp(hit->t, s);
         return hit;
     }
-    const Impl& g = *impl_;
+    const Impl& g = geom.impl();
     Counters c;
     Best best{tmax};
     LazyRayPre pre(ray);
-    for (int k = 0; k < candidates.transmissive_count; ++k) {
-        const uint32_t e = candidates.transmissive_entries[k];
+    for (int k = 0; k < transmissive_count; ++k) {
+        const uint32_t e = transmissive_entries[k];
         double t, b1, b2;
         uint32_t prim;
         if ((e >> kKindShift) == kPlaneKind) {

@@ -380,7 +380,7 @@ private:
             shaft.set_origin(side > 0 ? sh.o_front : sh.o_back);
             self.ng_side = side;
         }
-        return geom_.gather_shaft(shaft, self, shaft_, stats_);
+        return shaft_.gather(geom_, shaft, self, stats_);
     }
 
     // The shadow ray from the spawn origin on the light's side to P (d = P − origin, tmax = 1).
@@ -395,7 +395,7 @@ private:
             ++stats_.shaft_answered_rays;  // the shaft knows the answer: no test needed
             blocked = shaft_.blocked;
         } else {
-            blocked = geom_.occluded_among(shaft_, ray, 1.0, stats_);
+            blocked = shaft_.occluded(geom_, ray, 1.0, stats_);
         }
         if (blocked) return Vis(0);
         if constexpr (kTransmissive) {
@@ -419,7 +419,7 @@ private:
             ++stats_.shadow_rays;
             // Every segment lies inside the shaft: its list, when there is one, is complete.
             const auto hit = use_shaft_ && shaft_.transmissive_listed
-                                 ? geom_.intersect_among(shaft_, ray, 1.0, stats_)
+                                 ? shaft_.intersect_transmissive(geom_, ray, 1.0, stats_)
                                  : geom_.intersect(ray, 1.0, stats_, RayFilter::TransmissiveOnly);
             if (!hit) {
                 if (inside >= 0) T *= absorb(materials_[inside], glm::length(P - seg_start));

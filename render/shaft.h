@@ -1,13 +1,19 @@
 // Shaft culling for area-light shadow rays (Haines and Wallace, "Shaft Culling for Efficient
 // Ray-Traced Radiosity", 1991): every shadow ray from one shading point to the cells of one area
 // light lies in the convex shaft between the point and the light's parallelogram, so one walk of
-// the BVH against the shaft finds the few primitives any of those rays can meet.
+// the BVH against the shaft finds the few primitives any of those rays can meet
+// (ShaftCandidates), and each ray then tests only them. For the renderer's shadow rays; geometry.h
+// knows nothing of shafts.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 
+#include "render/geometry.h"
 #include "render/math.h"
+#include "render/stats.h"
 
 namespace wsd::render {
 
@@ -186,6 +192,44 @@ private:
     double light_scale_ = 0;
     Vec3 origin_{0};
     bool has_origin_ = false;
+};
+
+// The surface the shadow rays of a shaft leave: its primitive and geometric normal, and which
+// side of it the rays start on (+1 along ng, −1 against it, 0 when they do not share one origin).
+struct ShaftSelf {
+    uint32_t prim = 0xffffffffu;
+    Vec3 ng{0};
+    int ng_side = 0;
+};
+
+// The opaque primitives that the shadow rays of one shading point towards one area light may
+// meet, gathered by one walk of the BVH, so that each of those rays tests only them.
+struct ShaftCandidates {
+    static constexpr int kMax = 32;  // more than this: not worth it, trace each ray in full
+    uint32_t entries[kMax];
+    int count = 0;
+    bool transmissive = false;  // some transmissive primitive may meet the shaft
+    bool blocked = false;       // an opaque sphere meets every ray: all are blocked (Shaft::blocks_all)
+    // The transmissive primitives that may meet it, when there are at most kMaxTransmissive
+    // (transmissive_listed): the walk through glass then tests only them.
+    static constexpr int kMaxTransmissive = 8;
+    uint32_t transmissive_entries[kMaxTransmissive];
+    int transmissive_count = 0;
+    bool transmissive_listed = false;
+
+    // Collects the opaque primitives (planes included) that shadow rays inside `shaft` may meet:
+    // those in BVH leaves that meet it, less those a finer test clears (Shaft::outside_*,
+    // clear_of_*); `self` is the surface the rays leave. False when there is no BVH or more than
+    // kMax of them: then use Geometry::occluded for each ray.
+    bool gather(const Geometry& geom, const Shaft& shaft, const ShaftSelf& self, RayStats& stats);
+    // geom.occluded(ray, tmax, stats, RayFilter::OpaqueOnly) for a ray that lies inside the
+    // shaft these were gathered for: the same answer, testing only these primitives (none when
+    // the shaft is known to be blocked).
+    bool occluded(const Geometry& geom, const Ray& ray, double tmax, RayStats& stats) const;
+    // geom.intersect(ray, tmax, stats, RayFilter::TransmissiveOnly) for a ray inside the shaft,
+    // when transmissive_listed: the same hit, testing only the listed primitives.
+    std::optional<HitRecord> intersect_transmissive(const Geometry& geom, const Ray& ray, double tmax,
+                                                    RayStats& stats) const;
 };
 
 // The side of the surface through p with unit normal ng on which the whole parallelogram

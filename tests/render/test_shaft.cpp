@@ -50,14 +50,14 @@ TEST_CASE(
             if (!shaft.init(apex, radius, q.corner + shift, q.u, q.v)) continue;
             ShaftCandidates cand;
             RayStats stats;
-            if (!geom->gather_shaft(shaft, ShaftSelf{}, cand, stats)) continue;
+            if (!cand.gather(*geom, shaft, ShaftSelf{}, stats)) continue;
             ++used;
             for (int s = 0; s < 50; ++s) {
                 const Vec3 o = apex + radius * rng.uniform() * rng.unit_vector();
                 const Vec3 P = q.corner + shift + rng.uniform() * q.u + rng.uniform() * q.v;
                 const Ray ray{o, P - o};
                 const bool full = geom->occluded(ray, 1.0, stats, RayFilter::OpaqueOnly);
-                const bool among = geom->occluded_among(cand, ray, 1.0, stats);
+                const bool among = cand.occluded(*geom, ray, 1.0, stats);
                 REQUIRE(full == among);
                 ++compared;
                 blocked += full ? 1 : 0;
@@ -66,7 +66,7 @@ TEST_CASE(
                 const auto glass = geom->intersect(ray, 1.0, stats, RayFilter::TransmissiveOnly);
                 if (!cand.transmissive) REQUIRE(!glass);
                 if (cand.transmissive_listed) {
-                    const auto listed = geom->intersect_among(cand, ray, 1.0, stats);
+                    const auto listed = cand.intersect_transmissive(*geom, ray, 1.0, stats);
                     REQUIRE(bool(glass) == bool(listed));
                     if (glass) {
                         REQUIRE(glass->t == listed->t);
@@ -77,7 +77,7 @@ TEST_CASE(
                         const Vec3 next = Geometry::offset_origin(geom->surface(ray, *glass), ray.d);
                         const Ray on{next, P - next};
                         const auto a = geom->intersect(on, 1.0, stats, RayFilter::TransmissiveOnly);
-                        const auto b = geom->intersect_among(cand, on, 1.0, stats);
+                        const auto b = cand.intersect_transmissive(*geom, on, 1.0, stats);
                         REQUIRE(bool(a) == bool(b));
                         if (a) REQUIRE(a->prim == b->prim);
                     }
@@ -102,15 +102,15 @@ TEST_CASE("a shaft gathers only the primitives between the point and the light")
     REQUIRE(shaft.init({30, -5, 0}, 1e-9, {29.5, 10, -0.5}, {1, 0, 0}, {0, 0, 1}));
     ShaftCandidates cand;
     RayStats stats;
-    REQUIRE(geom->gather_shaft(shaft, ShaftSelf{}, cand, stats));
+    REQUIRE(cand.gather(*geom, shaft, ShaftSelf{}, stats));
     CHECK(cand.count >= 1);
     CHECK(cand.count <= 4);  // one leaf at most around sphere 10
     // The light straight above sphere 10 is blocked for every sample; one far to the side is not.
-    CHECK(geom->occluded_among(cand, Ray{{30, -5, 0}, Vec3(0, 15, 0)}, 1.0, stats));
+    CHECK(cand.occluded(*geom, Ray{{30, -5, 0}, Vec3(0, 15, 0)}, 1.0, stats));
     Shaft side;
     REQUIRE(side.init({30, -5, 0}, 1e-9, {29.5, -5.5, 10}, {1, 0, 0}, {0, 1, 0}));
-    REQUIRE(geom->gather_shaft(side, ShaftSelf{}, cand, stats));
-    CHECK(!geom->occluded_among(cand, Ray{{30, -5, 0}, Vec3(0, 0, 10)}, 1.0, stats));
+    REQUIRE(cand.gather(*geom, side, ShaftSelf{}, stats));
+    CHECK(!cand.occluded(*geom, Ray{{30, -5, 0}, Vec3(0, 0, 10)}, 1.0, stats));
 }
 
 namespace {
@@ -185,8 +185,8 @@ TEST_CASE("shadow rays leaving a surface: primitives cleared by side give the fu
             const SurfaceShaft sides = surface_shaft(s, q, true);
             if (!sides.ok) continue;
             ShaftCandidates cand_plain, cand;
-            const bool fits_plain = geom->gather_shaft(plain.shaft, plain.self, cand_plain, stats);
-            if (!geom->gather_shaft(sides.shaft, sides.self, cand, stats)) continue;
+            const bool fits_plain = cand_plain.gather(*geom, plain.shaft, plain.self, stats);
+            if (!cand.gather(*geom, sides.shaft, sides.self, stats)) continue;
             ++used;
             with_side += sides.self.ng_side != 0 ? 1 : 0;
             blocked_shafts += cand.blocked ? 1 : 0;
@@ -200,7 +200,7 @@ TEST_CASE("shadow rays leaving a surface: primitives cleared by side give the fu
                 const Vec3 o = glm::dot(P - s.p, s.ng) < 0 ? sides.o_back : sides.o_front;
                 const Ray ray{o, P - o};
                 const bool full = geom->occluded(ray, 1.0, stats, RayFilter::OpaqueOnly);
-                REQUIRE(full == geom->occluded_among(cand, ray, 1.0, stats));
+                REQUIRE(full == cand.occluded(*geom, ray, 1.0, stats));
                 ++compared;
                 blocked += full ? 1 : 0;
             }
@@ -233,7 +233,7 @@ TEST_CASE("a point on a flat floor gathers neither floor triangle, axis-aligned 
         REQUIRE(ss.ok);
         CHECK(ss.self.ng_side != 0);
         ShaftCandidates cand;
-        REQUIRE(geom->gather_shaft(ss.shaft, ss.self, cand, stats));
+        REQUIRE(cand.gather(*geom, ss.shaft, ss.self, stats));
         // Axis-aligned, both triangles are cleared exactly; turned, the point's own triangle is
         // (its side is known by construction) and the other one's side cannot be certain.
         CHECK(cand.count == (turned ? 1 : 0));

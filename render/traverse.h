@@ -1,0 +1,153 @@
+// The one walk of the 4-wide BVH (Bvh4Node) that every query uses: the stack, the order children
+// are visited in and the dispatch to leaves are written here once. What a query does at an inner
+// node (which children to enter: one ray's slab test, a packet's interval test, a shaft's plane
+// test) and at a leaf (test primitives, end the walk) is a policy passed in and inlined at
+// compile time, after madmann91/bvh's intersect<IsAnyHit>(ray, top, stack, leaf_fn, inner_fn).
+// Internal to render/. The walk depends on nodes only, so that a tree of trees (instances) can
+// walk its top level with it and call it again from a leaf.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "render/aabb.h"
+#include "render/bvh.h"
+
+namespace wsd::render {
+
+// The order in which the children that a node's test enters are visited.
+enum class WalkOrder {
+    // Nearest entry distance first; a waiting child is skipped when, by the time it is popped,
+    // the query no longer finds it open (closest hits, whose limit shrinks with each hit).
+    NearestFirst,
+    // Depth first, the highest lane first, no distances (any hit: the first one ends the walk).
+    DepthFirst,
+    // At each node its entered leaves first, in lane order; then its inner children depth first
+    // as above (gathering: the primitives near the top are seen before descending).
+    LeavesFirst,
+};
+
+// A child that the walk reached: count == 0 for an inner child (its node is nodes[first]),
+// otherwise a leaf over order[first, first + count); t is the entry distance the node test gave.
+struct BvhChild {
+    uint32_t first, count;
+    float t;
+    static BvhChild at(const Bvh4Node& node, uint32_t, int i, float t) {
+        return {node.first[i], node.count[i], t};
+    }
+};
+
+// The same, and where its box is (lane box & 3 of node box >> 2), for queries that test a leaf's
+// box again ray by ray.
+struct BvhChildAt {
+    uint32_t first, count;
+    float t;
+    uint32_t box;
+    static BvhChildAt at(const Bvh4Node& node, uint32_t index, int i, float t) {
+        return {node.first[i], node.count[i], t, index << 2 | static_cast<uint32_t>(i)};
+    }
+};
+
+// Each level of the tree leaves at most three children waiting.
+inline constexpr int kWalkStack = 3 * kMaxBvhDepth + 1;
+
+namespace detail {
+
+// The entered children of `node` (bits of mask) that wait on the stack, in the order they are
+// to be visited (the next one deepest), and returns the one to visit now.
+template <WalkOrder kOrder, class Child>
+[[gnu::always_inline]] inline Child push_children(const Bvh4Node& node, uint32_t index, int mask,
+                                                  const float* tn, Child* stack, int& sp) {
+    if constexpr (kOrder == WalkOrder::NearestFirst) {
+        // Nearest next; the others wait, farthest deepest, with their entry distances. One or
+        // two children (the common cases) need no sorting loop; ties keep lane order.
+        const int i = std::countr_zero(static_cast<unsigned>(mask));
+        const int rest = mask & (mask - 1);
+        if (rest == 0) return Child::at(node, index, i, tn[i]);
+        if ((rest & (rest - 1)) == 0) {
+            const int j = std::countr_zero(static_cast<unsigned>(rest));
+            const bool swap = tn[j] < tn[i];
+            const int near = swap ? j : i, far = swap ? i : j;
+            stack[sp++] = Child::at(node, index, far, tn[far]);
+            return Child::at(node, index, near, tn[near]);
+        }
+        Child e[4];
+        int m = 0;
+        for (; mask != 0; mask &= mask - 1) {
+            const int k = std::countr_zero(static_cast<unsigned>(mask));
+            const Child x = Child::at(node, index, k, tn[k]);
+            int j = m++;
+            while (j > 0 && e[j - 1].t > x.t) {
+                e[j] = e[j - 1];
+                --j;
+            }
+            e[j] = x;
+        }
+        for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
+        return e[0];
+    } else {
+        const int top = 31 - std::countl_zero(static_cast<unsigned>(mask));
+        for (int rest = mask & ~(1 << top); rest != 0; rest &= rest - 1) {
+            const int k = std::countr_zero(static_cast<unsigned>(rest));
+            stack[sp++] = Child::at(node, index, k, tn[k]);
+        }
+        return Child::at(node, index, top, tn[top]);
+    }
+}
+
+}  // namespace detail
+
+// Walks the non-empty tree `nodes` (node 0 holds the root's children) for one query and returns
+// true when the query ended it early. `visits` counts the nodes whose children were tested. The
+// query Q provides:
+//   static constexpr WalkOrder kOrder;
+//   using Child = BvhChild or BvhChildAt;
+//   int enter(const Bvh4Node& node, uint32_t index, float* t_entry)
+//       inner_fn: bit i set to visit child i of nodes[index]; t_entry[i] its entry distance
+//       (any value when the order ignores distances);
+//   bool leaf(const Child& c)     leaf_fn: true ends the walk;
+//   bool open(float t) const      NearestFirst only: a waiting child entered at t may still
+//                                 matter.
+template <class Q>
+[[gnu::always_inline]] inline bool walk_bvh(const Bvh4Node* nodes, Q& q, uint64_t& visits) {
+    using Child = typename Q::Child;
+    Child stack[kWalkStack];
+    int sp = 0;
+    uint32_t index = 0;
+    for (;;) {
+        const Bvh4Node& node = nodes[index];
+        alignas(16) float tn[4];
+        int mask = q.enter(node, index, tn);
+        ++visits;
+        if constexpr (Q::kOrder == WalkOrder::LeavesFirst) {
+            for (int m = mask; m != 0; m &= m - 1) {
+                const int i = std::countr_zero(static_cast<unsigned>(m));
+                if (node.count[i] == 0) continue;
+                mask &= ~(1 << i);
+                if (q.leaf(Child::at(node, index, i, tn[i]))) return true;
+            }
+        }
+        bool have = mask != 0;
+        Child next{};
+        if (have) next = detail::push_children<Q::kOrder>(node, index, mask, tn, stack, sp);
+        for (;;) {
+            if (have) {
+                if (next.count == 0) {
+                    index = next.first;
+                    break;
+                }
+                // With LeavesFirst only inner children wait: one call site, which the compiler inlines.
+                if constexpr (Q::kOrder != WalkOrder::LeavesFirst)
+                    if (q.leaf(next)) return true;
+            }
+            if (sp == 0) return false;
+            next = stack[--sp];
+            if constexpr (Q::kOrder == WalkOrder::NearestFirst)
+                have = q.open(next.t);
+            else
+                have = true;
+        }
+    }
+}
+
+}  // namespace wsd::render
