@@ -14,6 +14,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "render/file_util.h"
+
 namespace wsd::app {
 
 namespace fs = std::filesystem;
@@ -29,13 +31,12 @@ bool read_input_file(const std::string& path, std::string& text, std::string& er
         text = buffer.str();
         return true;
     }
-    if (!can_open_for_reading(path, error)) return false;
-    std::ifstream in(path, std::ios::binary);
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) {
-        error = "cannot read '" + path + "': read error";
+    render::FileBytes bytes;
+    if (!render::read_whole_file(path, bytes, error)) {
+        error = "cannot read '" + path + "': " + error;
         return false;
     }
+    text.assign(bytes.view());
     return true;
 }
 

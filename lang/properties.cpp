@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/text_util.h"
+
 namespace wsd::lang {
 
 namespace {
@@ -13,12 +15,7 @@ namespace {
 constexpr double kMinScale = 1e-12;
 constexpr double kMaxScale = 1e12;
 
-std::string quoted(std::string_view s) {
-    std::string out(1, '\'');
-    out.append(s);
-    out += '\'';
-    return out;
-}
+using render::quoted;
 
 std::string join_words(const std::vector<std::string_view>& words) {
     std::string out;

@@ -21,6 +21,9 @@
 #include <memory>
 #include <vector>
 
+#include "render/file_util.h"
+#include "render/text_util.h"
+
 namespace wsd::render {
 
 namespace {
@@ -31,10 +34,6 @@ constexpr long kMaxPixels = 1L << 28;
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
-}
-
-std::string quoted(const std::string& path) {
-    return "'" + path + "'";
 }
 
 uint8_t to_byte(float v) {
@@ -77,29 +76,6 @@ bool encode(ImageFormat format, const Film& film, Sink& sink) {
         default:
             return false;
     }
-}
-
-bool read_file(const std::string& path, std::vector<unsigned char>& data, std::string& error) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        error = "cannot read " + quoted(path) + ": " + std::strerror(errno);
-        return false;
-    }
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, std::fclose);
-    unsigned char buffer[65536];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
-        data.insert(data.end(), buffer, buffer + n);
-        if (data.size() > size_t(INT_MAX)) {
-            error = "cannot read " + quoted(path) + ": file too large";
-            return false;
-        }
-    }
-    if (std::ferror(f)) {
-        error = "cannot read " + quoted(path) + ": " + std::strerror(errno ? errno : EIO);
-        return false;
-    }
-    return true;
 }
 
 }  // namespace
@@ -243,17 +219,24 @@ bool write_image(const std::string& path, const Film& film, std::string& error) 
 }
 
 bool read_image(const std::string& path, Film& film, std::string& error) {
-    std::vector<unsigned char> data;
-    if (!read_file(path, data, error)) return false;
-    if (data.size() >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f')) {
-        const std::string_view bytes(reinterpret_cast<const char*>(data.data()), data.size());
-        if (decode_pfm(bytes, film, error) > 0) return true;
+    FileBytes file;
+    if (!read_whole_file(path, file, error)) {
         error = "cannot read " + quoted(path) + ": " + error;
         return false;
     }
-    const int len = int(data.size());
+    if (file.size > size_t(INT_MAX)) {
+        error = "cannot read " + quoted(path) + ": file too large";
+        return false;
+    }
+    const auto* data = reinterpret_cast<const unsigned char*>(file.data.get());
+    if (file.size >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f')) {
+        if (decode_pfm(file.view(), film, error) > 0) return true;
+        error = "cannot read " + quoted(path) + ": " + error;
+        return false;
+    }
+    const int len = int(file.size);
     int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(data.data(), len, &w, &h, &comp)) {
+    if (!stbi_info_from_memory(data, len, &w, &h, &comp)) {
         error = "cannot read " + quoted(path) + ": not a supported image (" + stbi_failure_reason() + ")";
         return false;
     }
@@ -262,8 +245,8 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         return false;
     }
     const size_t n = size_t(w) * size_t(h) * 3;
-    if (stbi_is_hdr_from_memory(data.data(), len)) {
-        float* px = stbi_loadf_from_memory(data.data(), len, &w, &h, &comp, 3);
+    if (stbi_is_hdr_from_memory(data, len)) {
+        float* px = stbi_loadf_from_memory(data, len, &w, &h, &comp, 3);
         if (!px) {
             error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
             return false;
@@ -274,8 +257,8 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         stbi_image_free(px);
         return true;
     }
-    if (stbi_is_16_bit_from_memory(data.data(), len)) {
-        uint16_t* px = stbi_load_16_from_memory(data.data(), len, &w, &h, &comp, 3);
+    if (stbi_is_16_bit_from_memory(data, len)) {
+        uint16_t* px = stbi_load_16_from_memory(data, len, &w, &h, &comp, 3);
         if (!px) {
             error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
             return false;
@@ -287,7 +270,7 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         stbi_image_free(px);
         return true;
     }
-    unsigned char* px = stbi_load_from_memory(data.data(), len, &w, &h, &comp, 3);
+    unsigned char* px = stbi_load_from_memory(data, len, &w, &h, &comp, 3);
     if (!px) {
         error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
         return false;

@@ -13,6 +13,7 @@
 
 #include "render/image_io.h"
 #include "render/integrator.h"
+#include "render/math.h"
 #include "render/parallel.h"
 #include "render/sampling.h"
 #include "render/scene.h"
@@ -26,10 +27,6 @@ constexpr int kTileSize = 16;
 constexpr uint32_t kCentreSample = 0xffffffffu;
 
 using Clock = std::chrono::steady_clock;
-
-bool finite3(const Color& c) {
-    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-}
 
 std::vector<Region> make_tiles(const Region& r) {
     std::vector<Region> tiles;

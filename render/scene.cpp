@@ -7,13 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include "render/math.h"
+
 namespace wsd::render {
 
 namespace {
 
-bool finite3(const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 bool non_negative3(const Vec3& v) {
     return finite3(v) && v.x >= 0 && v.y >= 0 && v.z >= 0;
 }
