@@ -273,10 +273,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         const std::vector<Region> tiles = make_tiles(rect);
         return parallel_for(tiles.size(), parallel, [&](size_t i, int id) {
             std::unique_ptr<Worker>& w = workers[size_t(id)];
-            if (!w) {
-                w = std::make_unique<Worker>();
-                w->tracer = make_tracer(scene, tracer_options, w->stats);
-                w->tiles = std::make_unique<TileRenderer>(scene, *w->tracer, w->stats, film, region, prepass);
+            if (!w) {  // kept only once complete, should make_tracer throw
+                auto made = std::make_unique<Worker>();
+                made->tracer = make_tracer(scene, tracer_options, made->stats);
+                made->tiles =
+                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass);
+                w = std::move(made);
             }
             (w->tiles.get()->*tile)(tiles[i]);
             tally.add(w->stats, area(tiles[i]));
