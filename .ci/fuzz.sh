@@ -2,7 +2,7 @@
 # CI: fuzzes the language front end (fuzz/fuzz_lang.cpp) with libFuzzer under ASan+UBSan for a
 # bounded time, seeded with every scene of tests/golden and examples. Fails on any crash, sanitizer
 # report, timeout or out-of-memory; the input that caused it is kept in build-fuzz/artifacts/.
-# Installs clang and libclang-rt-14-dev when missing (apt-get as root, else through sudo).
+# Installs clang, libclang-rt-14-dev and the libraries when missing (apt-get as root, else through sudo).
 # Environment: WSD_FUZZ_SECONDS (default 60), WSD_FUZZ_BUILD_DIR (default build-fuzz).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${WSD_FUZZ_SECONDS:-60}"
 build="${WSD_FUZZ_BUILD_DIR:-build-fuzz}"
 
-packages=(cmake make clang libclang-rt-14-dev libglm-dev libcli11-dev libstb-dev)
+packages=(cmake make clang libclang-rt-14-dev libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -14,6 +14,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "render/file_util.h"
+
 namespace wsd::app {
 
 namespace fs = std::filesystem;
@@ -29,13 +31,12 @@ bool read_input_file(const std::string& path, std::string& text, std::string& er
         text = buffer.str();
         return true;
     }
-    if (!can_open_for_reading(path, error)) return false;
-    std::ifstream in(path, std::ios::binary);
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) {
-        error = "cannot read '" + path + "': read error";
+    render::FileBytes bytes;
+    if (!render::read_whole_file(path, bytes, error)) {
+        error = "cannot read '" + path + "': " + error;
         return false;
     }
+    text.assign(bytes.view());
     return true;
 }
 
@@ -159,24 +160,6 @@ uint64_t peak_memory_bytes() {
         }
     }
     return 0;
-}
-
-std::string json_escape(const std::string& s) {
-    std::string out;
-    for (const char c : s) {
-        const auto u = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (u < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", u);
-            out += buf;
-        } else {
-            out += c;
-        }
-    }
-    return out;
 }
 
 }  // namespace wsd::app

@@ -30,9 +30,6 @@ void warn(const std::string& message);
 uint64_t fnv1a64(std::string_view data, uint64_t seed = 0xcbf29ce484222325ull);
 std::string hex64(uint64_t value);
 
-// `s` with quotes, backslashes and control characters escaped for a JSON string (no quotes added).
-std::string json_escape(const std::string& s);
-
 // The stem of a scene path for default outputs ("a/b/NAME.wsd" → "NAME"; "-" → "stdin").
 std::string scene_stem(const std::string& path);
 

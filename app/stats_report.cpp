@@ -1,9 +1,11 @@
-// Formatting of render statistics. Percentages guard against zero tests; JSON numbers are
-// printed with enough digits to round-trip, strings are escaped.
+// Formatting of render statistics. Percentages guard against zero tests; the JSON is written by
+// nlohmann-json.
 #include "app/stats_report.h"
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app/io_util.h"
@@ -23,8 +25,7 @@ std::string percent(uint64_t part, uint64_t whole) {
     return fixed(100.0 * static_cast<double>(part) / static_cast<double>(whole), 2) + "%";
 }
 
-std::string json_number(double v) {
-    if (!std::isfinite(v)) return "null";
+std::string fixed_digits(double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
@@ -109,44 +110,43 @@ std::string stats_table(const RenderReport& r) {
 
 std::string stats_json(const RenderReport& r) {
     const render::RayStats& s = r.stats;
-    std::ostringstream out;
-    auto u = [&](const char* key, uint64_t v) { out << "  \"" << key << "\": " << v << ",\n"; };
-    auto d = [&](const char* key, double v) { out << "  \"" << key << "\": " << json_number(v) << ",\n"; };
-    out << "{\n";
-    out << "  \"scene\": \"" << json_escape(r.scene) << "\",\n";
-    u("width", static_cast<uint64_t>(r.width));
-    u("height", static_cast<uint64_t>(r.height));
-    u("rendered_pixels", static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height));
-    u("supersamples", static_cast<uint64_t>(r.supersamples));
-    u("camera_rays", s.camera_rays);
-    u("shadow_rays", s.shadow_rays);
-    u("shaft_answered_rays", s.shaft_answered_rays);
-    u("reflection_rays", s.reflection_rays);
-    u("refraction_rays", s.refraction_rays);
-    u("ray_queries", s.ray_queries());
-    u("triangle_tests", s.triangle_tests);
-    u("triangle_hits", s.triangle_hits);
-    u("sphere_tests", s.sphere_tests);
-    u("sphere_hits", s.sphere_hits);
-    u("box_tests", s.box_tests);
-    u("shape_box_tests", s.shape_box_tests);
-    u("plane_tests", s.plane_tests);
-    u("fresnel_evals", s.fresnel_evals);
-    u("texture_evals", s.texture_evals);
-    u("noise_evals", s.noise_evals);
-    u("rejected_rays", s.rejected_rays);
-    u("adaptive_pixels", s.adaptive_pixels);
-    u("nonfinite_samples", s.nonfinite_samples);
-    d("parse_seconds", r.parse_seconds);
-    d("build_seconds", r.build_seconds);
-    d("render_seconds", r.render_seconds);
-    d("mrays_per_second", mrays_per_second(r));
-    u("peak_memory_bytes", r.peak_memory_bytes);
-    out << "  \"effects\": [";
-    for (size_t i = 0; i < r.effects.size(); ++i)
-        out << (i ? ", " : "") << "\"" << json_escape(r.effects[i]) << "\"";
-    out << "]\n}\n";
-    return out.str();
+    // Seconds keep 9 significant digits (timings are not more precise); non-finite values are null.
+    auto seconds = [](double v) {
+        return std::isfinite(v) ? std::strtod(fixed_digits(v).c_str(), nullptr) : v;
+    };
+    const nlohmann::ordered_json json = {
+        {"scene", r.scene},
+        {"width", r.width},
+        {"height", r.height},
+        {"rendered_pixels", static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height)},
+        {"supersamples", r.supersamples},
+        {"camera_rays", s.camera_rays},
+        {"shadow_rays", s.shadow_rays},
+        {"shaft_answered_rays", s.shaft_answered_rays},
+        {"reflection_rays", s.reflection_rays},
+        {"refraction_rays", s.refraction_rays},
+        {"ray_queries", s.ray_queries()},
+        {"triangle_tests", s.triangle_tests},
+        {"triangle_hits", s.triangle_hits},
+        {"sphere_tests", s.sphere_tests},
+        {"sphere_hits", s.sphere_hits},
+        {"box_tests", s.box_tests},
+        {"shape_box_tests", s.shape_box_tests},
+        {"plane_tests", s.plane_tests},
+        {"fresnel_evals", s.fresnel_evals},
+        {"texture_evals", s.texture_evals},
+        {"noise_evals", s.noise_evals},
+        {"rejected_rays", s.rejected_rays},
+        {"adaptive_pixels", s.adaptive_pixels},
+        {"nonfinite_samples", s.nonfinite_samples},
+        {"parse_seconds", seconds(r.parse_seconds)},
+        {"build_seconds", seconds(r.build_seconds)},
+        {"render_seconds", seconds(r.render_seconds)},
+        {"mrays_per_second", seconds(mrays_per_second(r))},
+        {"peak_memory_bytes", r.peak_memory_bytes},
+        {"effects", r.effects}};
+    // A scene path that is not UTF-8 is only a label: its bad bytes become U+FFFD.
+    return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace wsd::app

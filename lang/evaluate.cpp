@@ -5,6 +5,8 @@
 
 #include "lang/builtins.h"
 #include "lang/interpreter.h"
+#include "render/math.h"
+#include "render/text_util.h"
 
 namespace wsd::lang {
 
@@ -12,16 +14,8 @@ namespace {
 
 constexpr size_t kMaxStringLength = size_t(1) << 24;
 
-std::string quoted(std::string_view s) {
-    std::string out(1, '\'');
-    out.append(s);
-    out += '\'';
-    return out;
-}
-
-bool finite3(glm::dvec3 v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
+using render::finite3;
+using render::quoted;
 
 // Vectors computed as three components; a vector2 keeps z = 0 and drops it again.
 glm::dvec3 components(const Value& v) {

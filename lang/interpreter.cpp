@@ -14,46 +14,25 @@
 
 #include "lang/builtins.h"
 #include "lang/parser.h"
+#include "render/file_util.h"
+#include "render/text_util.h"
 
 namespace wsd::lang {
 
 namespace {
 
+// An include file's text; the reason starts in lower case, as it follows "cannot read ...: ".
 bool read_file(const std::string& path, std::string& out, std::string& reason) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        reason = "it is a directory";
+    render::FileBytes bytes;
+    if (!render::read_whole_file(path, bytes, reason)) {
+        reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
         return false;
     }
-    errno = 0;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        reason = errno ? std::strerror(errno) : "cannot open it";
-        if (!reason.empty())
-            reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
-        return false;
-    }
-    in.seekg(0, std::ios::end);
-    std::streamoff size = in.tellg();
-    in.seekg(0, std::ios::beg);
-    if (size > 0) {
-        out.resize(static_cast<size_t>(size));
-        in.read(out.data(), size);
-        out.resize(static_cast<size_t>(in.gcount()));
-    }
-    if (in.bad()) {
-        reason = "a read error occurred";
-        return false;
-    }
+    out.assign(bytes.view());
     return true;
 }
 
-std::string quoted(std::string_view s) {
-    std::string out(1, '\'');
-    out.append(s);
-    out += '\'';
-    return out;
-}
+using render::quoted;
 
 }  // namespace
 

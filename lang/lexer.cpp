@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "render/text_util.h"
+
 namespace wsd::lang {
 
 namespace {
@@ -85,20 +87,7 @@ std::string code_point_name(uint32_t cp) {
 
 // Quoted lexeme for a message, cut so that a 10 MB token does not become a 10 MB message.
 std::string quoted(std::string_view s) {
-    constexpr size_t max_len = 40;
-    const bool cut = s.size() > max_len;
-    size_t len = s.size();
-    if (cut) {
-        len = max_len;
-        while (len > 0 && (static_cast<unsigned char>(s[len]) & 0xC0u) == 0x80u) --len;
-    }
-    std::string out;
-    out.reserve(len + 5);
-    out += '\'';
-    out.append(s.substr(0, len));
-    if (cut) out += "...";
-    out += '\'';
-    return out;
+    return render::quoted_cut(s, 40);
 }
 
 }  // namespace

@@ -6,16 +6,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/text_util.h"
+
 namespace wsd::lang {
 
 namespace {
 
-std::string quoted(std::string_view s) {
-    std::string out(1, '\'');
-    out.append(s);
-    out += '\'';
-    return out;
-}
+using render::quoted;
 
 std::string join_words(const std::vector<std::string_view>& words) {
     std::string out;

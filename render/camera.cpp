@@ -4,15 +4,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "render/math.h"
+
 namespace wsd::render {
-
-namespace {
-
-bool finite3(const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
 
 std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int height, std::string& error) {
     if (!finite3(spec.position) || !finite3(spec.look_at) || !finite3(spec.up)) {

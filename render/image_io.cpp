@@ -21,7 +21,9 @@
 #include <memory>
 #include <vector>
 
+#include "render/file_util.h"
 #include "render/limits.h"
+#include "render/text_util.h"
 
 namespace wsd::render {
 
@@ -30,10 +32,6 @@ namespace {
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
-}
-
-std::string quoted(const std::string& path) {
-    return "'" + path + "'";
 }
 
 uint8_t to_byte(float v) {
@@ -58,18 +56,8 @@ bool encode(ImageFormat format, const Film& film, Sink& sink) {
     if (format == ImageFormat::Hdr)
         return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, film.rgb.data()) != 0;
     if (format == ImageFormat::Pfm) {
-        const std::string header = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
-        sink_write(&sink, const_cast<char*>(header.data()), int(header.size()));
-        std::vector<unsigned char> row(size_t(w) * 12);
-        for (int y = h - 1; y >= 0; --y) {  // PFM stores the bottom row first
-            const float* src = film.rgb.data() + size_t(y) * size_t(w) * 3;
-            for (size_t i = 0; i < size_t(w) * 3; ++i) {
-                uint32_t bits = std::bit_cast<uint32_t>(src[i]);
-                if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
-                std::memcpy(&row[i * 4], &bits, 4);
-            }
-            sink_write(&sink, row.data(), int(row.size()));
-        }
+        std::string bytes = encode_pfm(film);
+        sink_write(&sink, bytes.data(), int(bytes.size()));
         return true;
     }
     std::vector<unsigned char> bytes(film.rgb.size());
@@ -88,38 +76,54 @@ bool encode(ImageFormat format, const Film& film, Sink& sink) {
     }
 }
 
-bool read_file(const std::string& path, std::vector<unsigned char>& data, std::string& error) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) {
-        error = "cannot read " + quoted(path) + ": " + std::strerror(errno);
-        return false;
-    }
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, std::fclose);
-    unsigned char buffer[65536];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) {
-        data.insert(data.end(), buffer, buffer + n);
-        if (data.size() > size_t(INT_MAX)) {
-            error = "cannot read " + quoted(path) + ": file too large";
-            return false;
+}  // namespace
+
+ImageFormat format_from_extension(const std::string& path) {
+    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    if (ext == ".png") return ImageFormat::Png;
+    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::Jpeg;
+    if (ext == ".bmp") return ImageFormat::Bmp;
+    if (ext == ".tga") return ImageFormat::Tga;
+    if (ext == ".hdr") return ImageFormat::Hdr;
+    if (ext == ".pfm") return ImageFormat::Pfm;
+    return ImageFormat::Unknown;
+}
+
+double srgb_encode(double linear) {
+    if (linear <= 0.0031308) return 12.92 * linear;
+    return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double srgb_decode(double encoded) {
+    if (encoded <= 0.04045) return encoded / 12.92;
+    return std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+std::string encode_pfm(const Film& film) {
+    const size_t w = size_t(film.width), h = size_t(film.height);
+    std::string out = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
+    const size_t header = out.size();
+    out.resize(header + w * h * 12);
+    for (size_t y = 0; y < h; ++y) {  // PFM stores the bottom row first
+        const float* src = film.rgb.data() + (h - 1 - y) * w * 3;
+        for (size_t i = 0; i < w * 3; ++i) {
+            uint32_t bits = std::bit_cast<uint32_t>(src[i]);
+            if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
+            std::memcpy(out.data() + header + (y * w * 3 + i) * 4, &bits, 4);
         }
     }
-    if (std::ferror(f)) {
-        error = "cannot read " + quoted(path) + ": " + std::strerror(errno ? errno : EIO);
-        return false;
-    }
-    return true;
+    return out;
 }
 
 // PFM: "PF" (RGB) or "Pf" (grey), width, height, scale (negative: little-endian), each separated by
 // whitespace, one whitespace byte, then rows of 32-bit floats from the bottom row up.
-bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, Film& film,
-              std::string& error) {
-    const char* p = reinterpret_cast<const char*>(data.data());
-    const char* end = p + data.size();
+size_t decode_pfm(std::string_view bytes, Film& film, std::string& error) {
+    const char* const begin = bytes.data();
+    const char* p = begin;
+    const char* end = p + bytes.size();
     auto bad = [&](const char* why) {
-        error = "cannot read " + quoted(path) + ": malformed PFM file (" + why + ")";
-        return false;
+        error = std::string("malformed PFM file (") + why + ")";
+        return size_t(0);
     };
     auto skip_space = [&] {
         while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
@@ -147,7 +151,7 @@ bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, F
     if (w < 1 || h < 1 || w > kMaxImageSide || h > kMaxImageSide || w * h > kMaxPixels)
         return bad("bad image size");
     const size_t values = size_t(w) * size_t(h) * size_t(channels);
-    if (size_t(end - p) < values * 4) return bad("the pixel data is shorter than the header says");
+    if (size_t(end - p) < values * 4) return bad("truncated: the pixel data is shorter than the header says");
     const bool little = scale < 0;
     const bool swap = little != (std::endian::native == std::endian::little);
     film.width = int(w);
@@ -167,30 +171,7 @@ bool read_pfm(const std::string& path, const std::vector<unsigned char>& data, F
             }
         }
     }
-    return true;
-}
-
-}  // namespace
-
-ImageFormat format_from_extension(const std::string& path) {
-    const std::string ext = lower(std::filesystem::path(path).extension().string());
-    if (ext == ".png") return ImageFormat::Png;
-    if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::Jpeg;
-    if (ext == ".bmp") return ImageFormat::Bmp;
-    if (ext == ".tga") return ImageFormat::Tga;
-    if (ext == ".hdr") return ImageFormat::Hdr;
-    if (ext == ".pfm") return ImageFormat::Pfm;
-    return ImageFormat::Unknown;
-}
-
-double srgb_encode(double linear) {
-    if (linear <= 0.0031308) return 12.92 * linear;
-    return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
-
-double srgb_decode(double encoded) {
-    if (encoded <= 0.04045) return encoded / 12.92;
-    return std::pow((encoded + 0.055) / 1.055, 2.4);
+    return size_t(p - begin) + values * 4;
 }
 
 bool write_image(const std::string& path, const Film& film, std::string& error) {
@@ -237,13 +218,24 @@ bool write_image(const std::string& path, const Film& film, std::string& error) 
 }
 
 bool read_image(const std::string& path, Film& film, std::string& error) {
-    std::vector<unsigned char> data;
-    if (!read_file(path, data, error)) return false;
-    if (data.size() >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f'))
-        return read_pfm(path, data, film, error);
-    const int len = int(data.size());
+    FileBytes file;
+    if (!read_whole_file(path, file, error)) {
+        error = "cannot read " + quoted(path) + ": " + error;
+        return false;
+    }
+    if (file.size > size_t(INT_MAX)) {
+        error = "cannot read " + quoted(path) + ": file too large";
+        return false;
+    }
+    const auto* data = reinterpret_cast<const unsigned char*>(file.data.get());
+    if (file.size >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f')) {
+        if (decode_pfm(file.view(), film, error) > 0) return true;
+        error = "cannot read " + quoted(path) + ": " + error;
+        return false;
+    }
+    const int len = int(file.size);
     int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(data.data(), len, &w, &h, &comp)) {
+    if (!stbi_info_from_memory(data, len, &w, &h, &comp)) {
         error = "cannot read " + quoted(path) + ": not a supported image (" + stbi_failure_reason() + ")";
         return false;
     }
@@ -252,8 +244,8 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         return false;
     }
     const size_t n = size_t(w) * size_t(h) * 3;
-    if (stbi_is_hdr_from_memory(data.data(), len)) {
-        float* px = stbi_loadf_from_memory(data.data(), len, &w, &h, &comp, 3);
+    if (stbi_is_hdr_from_memory(data, len)) {
+        float* px = stbi_loadf_from_memory(data, len, &w, &h, &comp, 3);
         if (!px) {
             error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
             return false;
@@ -264,8 +256,8 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         stbi_image_free(px);
         return true;
     }
-    if (stbi_is_16_bit_from_memory(data.data(), len)) {
-        uint16_t* px = stbi_load_16_from_memory(data.data(), len, &w, &h, &comp, 3);
+    if (stbi_is_16_bit_from_memory(data, len)) {
+        uint16_t* px = stbi_load_16_from_memory(data, len, &w, &h, &comp, 3);
         if (!px) {
             error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
             return false;
@@ -277,7 +269,7 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
         stbi_image_free(px);
         return true;
     }
-    unsigned char* px = stbi_load_from_memory(data.data(), len, &w, &h, &comp, 3);
+    unsigned char* px = stbi_load_from_memory(data, len, &w, &h, &comp, 3);
     if (!px) {
         error = "cannot read " + quoted(path) + ": " + stbi_failure_reason();
         return false;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "render/renderer.h"
 
@@ -18,6 +19,14 @@ double srgb_decode(double encoded);
 // Writes to a temporary file in the same directory, then renames it over `path`; on failure
 // nothing is left behind and `error` says why. Returns false on failure.
 bool write_image(const std::string& path, const Film& film, std::string& error);
+
+// The bytes of a PFM file of `film`: "PF", little-endian floats, bottom row first.
+std::string encode_pfm(const Film& film);
+
+// Parses the PFM image ("PF" colour or "Pf" grey, either byte order) at the start of `bytes`.
+// Returns the offset just past its pixel data (where anything appended to it starts), or 0 with
+// `error` saying what is malformed.
+size_t decode_pfm(std::string_view bytes, Film& film, std::string& error);
 
 // Reads any supported format into linear RGB (8-bit formats are sRGB-decoded). False + error.
 bool read_image(const std::string& path, Film& film, std::string& error);

@@ -3,15 +3,9 @@
 
 #include <cmath>
 
+#include "render/math.h"
+
 namespace wsd::render {
-
-namespace {
-
-bool finite3(const Vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
 
 std::optional<std::string> validate_light(const LightSpec& spec) {
     if (!finite3(spec.position)) return "light position must be finite";

@@ -20,6 +20,10 @@ using Mat3 = glm::dmat3;
 
 inline constexpr double kPi = 3.14159265358979323846;
 
+inline bool finite3(const Vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
 // Unit roundoff (half an ULP of 1) of double and float.
 inline constexpr double kEpsD = 0x1p-53;
 inline constexpr double kEpsF = 0x1p-24;

@@ -4,10 +4,7 @@
 // read whole, lines are scanned in place and numbers go through std::from_chars.
 #include "render/obj.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +12,9 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <set>
+
+#include "render/file_util.h"
 
 namespace wsd::render {
 
@@ -654,33 +654,14 @@ ObjResult parse_obj(const std::string& name, std::string_view text) {
 }
 
 ObjResult load_obj(const std::string& path) {
-    ObjResult result;
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) {
-        result.error = "cannot open mesh file '" + path + "': " + std::strerror(errno);
+    FileBytes file;
+    std::string reason;
+    if (!read_whole_file(path, file, reason)) {
+        ObjResult result;
+        result.error = "cannot read mesh file '" + path + "': " + reason;
         return result;
     }
-    // Regular files only: a FIFO or a device such as /dev/zero would block or never end.
-    struct stat st {};
-    if (fstat(fileno(file.get()), &st) != 0 || !S_ISREG(st.st_mode)) {
-        result.error = "cannot read mesh file '" + path + "': not a regular file";
-        return result;
-    }
-    // Uninitialised on purpose (new char[n], not a std::string): zero-filling 100 MB only to
-    // overwrite it with the file cost a tenth of the load time.
-    const size_t size = static_cast<size_t>(st.st_size);
-    std::unique_ptr<char[]> text(new (std::nothrow) char[size == 0 ? 1 : size]);
-    if (!text) {
-        result.error = "cannot read mesh file '" + path + "': out of memory";
-        return result;
-    }
-    errno = 0;
-    const size_t got = size == 0 ? 0 : std::fread(text.get(), 1, size, file.get());
-    if (got != size || std::ferror(file.get())) {
-        result.error = "cannot read mesh file '" + path + "': " + std::strerror(errno ? errno : EIO);
-        return result;
-    }
-    return parse_obj(path, std::string_view(text.get(), size));
+    return parse_obj(path, file.view());
 }
 
 }  // namespace wsd::render

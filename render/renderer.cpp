@@ -1,21 +1,20 @@
-// render(): the image (or a region of it) cut into 16×16 tiles handed to std::thread workers
-// through an atomic counter. Each worker has its own tracer and RayStats (summed under a lock
-// once per tile); the calling thread only reports progress. Pixels: 1 centre ray, or a jittered
-// grid averaged (box filter), or adaptive supersampling in two phases: centre rays over the
-// region plus a 1-pixel border, then the full grid where a neighbour's display value differs.
+// render(): the image (or a region of it) cut into 16×16 tiles rendered by parallel_for. Each
+// worker thread has its own tracer and RayStats (summed under a lock once per tile). Pixels: 1
+// centre ray, or a jittered grid averaged (box filter), or adaptive supersampling in two phases:
+// centre rays over the region plus a 1-pixel border, then the full grid where a neighbour's
+// display value differs.
 #include "render/renderer.h"
 
 #include <algorithm>
-#include <barrier>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <exception>
 #include <mutex>
-#include <thread>
+#include <utility>
 
 #include "render/image_io.h"
 #include "render/integrator.h"
+#include "render/math.h"
+#include "render/parallel.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 
@@ -28,10 +27,6 @@ constexpr int kTileSize = 16;
 constexpr uint32_t kCentreSample = 0xffffffffu;
 
 using Clock = std::chrono::steady_clock;
-
-bool finite3(const Color& c) {
-    return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
-}
 
 std::vector<Region> make_tiles(const Region& r) {
     std::vector<Region> tiles;
@@ -197,6 +192,54 @@ private:
     double threshold_;
 };
 
+// One render thread's state, made on its first tile: its tracer, its tile renderer and the
+// counters they increment.
+struct Worker {
+    RayStats stats;
+    std::unique_ptr<Tracer> tracer;
+    std::unique_ptr<TileRenderer> tiles;
+};
+
+// The workers' counters and the work done so far (pixels, prepass pixels included), summed
+// under a lock once per tile so that progress can report them while the render runs.
+class Tally {
+public:
+    void add(RayStats& local, size_t work) {
+        std::lock_guard lock(mutex_);
+        total_ += local;
+        work_ += work;
+        local = RayStats{};
+    }
+    std::pair<RayStats, size_t> snapshot() {
+        std::lock_guard lock(mutex_);
+        return {total_, work_};
+    }
+
+private:
+    std::mutex mutex_;
+    RayStats total_;
+    size_t work_ = 0;
+};
+
+Region clamped_region(const RenderOptions& options, const Settings& settings) {
+    Region r = options.region.value_or(Region{0, 0, settings.width, settings.height});
+    r.x0 = std::clamp(r.x0, 0, settings.width);
+    r.x1 = std::clamp(r.x1, r.x0, settings.width);
+    r.y0 = std::clamp(r.y0, 0, settings.height);
+    r.y1 = std::clamp(r.y1, r.y0, settings.height);
+    return r;
+}
+
+// The adaptive prepass's storage over the region plus a 1-pixel border, clipped to the image.
+Prepass make_prepass(const Region& region, const Settings& settings) {
+    Prepass p;
+    p.rect = {std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0), std::min(region.x1 + 1, settings.width),
+              std::min(region.y1 + 1, settings.height)};
+    p.centre.resize(area(p.rect));
+    p.display.resize(area(p.rect));
+    return p;
+}
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
@@ -208,120 +251,46 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     result.effects = effects.names();
 
     const Settings& settings = scene.settings();
-    Region region = options.region.value_or(Region{0, 0, settings.width, settings.height});
-    region.x0 = std::clamp(region.x0, 0, settings.width);
-    region.x1 = std::clamp(region.x1, region.x0, settings.width);
-    region.y0 = std::clamp(region.y0, 0, settings.height);
-    region.y1 = std::clamp(region.y1, region.y0, settings.height);
+    const Region region = clamped_region(options, settings);
     Film& film = result.film;
-    film.width = region.x1 - region.x0;
-    film.height = region.y1 - region.y0;
-    film.rgb.assign(area(region) * 3, 0.0f);
-
+    film = {region.x1 - region.x0, region.y1 - region.y0, std::vector<float>(area(region) * 3, 0.0f)};
     const bool adaptive = settings.adaptive_supersampling && settings.supersamples > 1 && area(region) > 0;
-    Prepass prepass;
-    std::vector<Region> prepass_tiles;
-    if (adaptive) {
-        prepass.rect = {std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0),
-                        std::min(region.x1 + 1, settings.width), std::min(region.y1 + 1, settings.height)};
-        prepass.centre.resize(area(prepass.rect));
-        prepass.display.resize(area(prepass.rect));
-        prepass_tiles = make_tiles(prepass.rect);
-    }
-    const std::vector<Region> tiles = make_tiles(region);
+    Prepass prepass = adaptive ? make_prepass(region, settings) : Prepass{};
     const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
 
-    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, int(std::max({size_t(1), tiles.size(), prepass_tiles.size()})));
-
-    std::atomic<size_t> next_prepass{0}, next_tile{0};
-    std::barrier phase_end(threads);
-    std::mutex mutex;
-    std::condition_variable done_cv;
-    RayStats total;
-    size_t work_done = 0, pixels_done = 0;
-    int running = threads;
-    std::exception_ptr failure;
+    std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
     const TracerOptions tracer_options{options.specialise, options.adaptive_lights};
-    auto cancelled = [&options] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
-
-    auto worker = [&] {
-        RayStats local;
-        std::unique_ptr<Tracer> tracer;
-        std::unique_ptr<TileRenderer> out;
-        auto publish = [&](const Region& t, bool final_pixels) {
-            std::lock_guard lock(mutex);
-            total += local;
-            work_done += area(t);
-            if (final_pixels) pixels_done += area(t);
-            local = RayStats{};
+    Tally tally;
+    ParallelOptions parallel{options.threads, options.cancel, {}};
+    if (options.progress) {
+        parallel.poll = [&] {
+            const auto [stats, work] = tally.snapshot();
+            options.progress(double(work) / total_work, stats);
         };
-        auto guarded = [&](auto&& body) {
-            try {
-                body();
-            } catch (...) {
-                std::lock_guard lock(mutex);
-                if (!failure) failure = std::current_exception();
-            }
-        };
-        guarded([&] {
-            tracer = make_tracer(scene, tracer_options, local);
-            out = std::make_unique<TileRenderer>(scene, *tracer, local, film, region, prepass);
-            while (!cancelled()) {
-                const size_t i = next_prepass.fetch_add(1, std::memory_order_relaxed);
-                if (i >= prepass_tiles.size()) break;
-                out->render_centres(prepass_tiles[i]);
-                publish(prepass_tiles[i], false);
-            }
-        });
-        // Every worker arrives, whatever happened, so that none waits forever.
-        if (adaptive) phase_end.arrive_and_wait();
-        guarded([&] {
-            if (!out) return;
-            while (!cancelled()) {
-                {
-                    std::lock_guard lock(mutex);
-                    if (failure) break;
-                }
-                const size_t i = next_tile.fetch_add(1, std::memory_order_relaxed);
-                if (i >= tiles.size()) break;
-                if (adaptive)
-                    out->render_adaptive(tiles[i]);
-                else
-                    out->render(tiles[i]);
-                publish(tiles[i], true);
-            }
-        });
-        std::lock_guard lock(mutex);
-        --running;
-        done_cv.notify_all();
-    };
-
-    std::vector<std::thread> pool;
-    pool.reserve(size_t(threads));
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-    {
-        std::unique_lock lock(mutex);
-        auto last = Clock::now();
-        while (running > 0) {
-            done_cv.wait_for(lock, std::chrono::milliseconds(250));
-            if (options.progress && running > 0 && Clock::now() - last >= std::chrono::milliseconds(250)) {
-                const RayStats snapshot = total;
-                const double fraction = double(work_done) / total_work;
-                lock.unlock();
-                options.progress(fraction, snapshot);
-                lock.lock();
-                last = Clock::now();
-            }
-        }
     }
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
+    auto run = [&](const Region& rect, void (TileRenderer::*tile)(const Region&)) {
+        const std::vector<Region> tiles = make_tiles(rect);
+        return parallel_for(tiles.size(), parallel, [&](size_t i, int id) {
+            std::unique_ptr<Worker>& w = workers[size_t(id)];
+            if (!w) {  // kept only once complete, should make_tracer throw
+                auto made = std::make_unique<Worker>();
+                made->tracer = make_tracer(scene, tracer_options, made->stats);
+                made->tiles =
+                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass);
+                w = std::move(made);
+            }
+            (w->tiles.get()->*tile)(tiles[i]);
+            tally.add(w->stats, area(tiles[i]));
+        });
+    };
+    bool complete = true;
+    if (adaptive) complete = run(prepass.rect, &TileRenderer::render_centres);
+    if (complete) complete = run(region, adaptive ? &TileRenderer::render_adaptive : &TileRenderer::render);
 
-    result.stats = total;
-    // Only a cancellation leaves pixels unrendered.
-    result.cancelled = pixels_done < area(region);
-    if (options.progress && !result.cancelled) options.progress(1.0, result.stats);
+    result.stats = tally.snapshot().first;
+    result.cancelled = !complete;
+    if (options.progress && complete) options.progress(1.0, result.stats);
     result.render_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return result;
 }

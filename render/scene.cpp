@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/math.h"
 #include "render/params.h"
 
 namespace wsd::render {

@@ -130,7 +130,7 @@ TEST_CASE("hostile: 100 MB files are read, and errors reported at the right line
     std::mt19937 rng(99);
     std::string garbage(100 * 1024 * 1024, '\0');
     for (size_t i = 0; i + 4 <= garbage.size(); i += 4) {
-        const uint32_t v = rng();
+        const uint32_t v = static_cast<uint32_t>(rng());  // mt19937 yields 32 bits
         garbage[i] = static_cast<char>(v & 0xff);
         garbage[i + 1] = static_cast<char>((v >> 8) & 0xff);
         garbage[i + 2] = static_cast<char>((v >> 16) & 0xff);

@@ -7,6 +7,7 @@
 #include "app/image_metrics.h"
 #include "app/svg_plot.h"
 #include "app/tile_file.h"
+#include "render/image_io.h"
 
 using namespace wsd::app;
 
@@ -118,6 +119,12 @@ TEST_CASE("a tile file round-trips its pixels and metadata", "[tiles]") {
     meta.scene = "dir/a \"quoted\" scene.wsd";
     const std::string bytes = encode_tile(film, meta);
     REQUIRE(bytes.rfind("PF\n3 2\n-1.0\n", 0) == 0);
+    // The pixels are the PFM file `wsd render -o x.pfm` writes, and the trailer keeps its keys.
+    CHECK(bytes.rfind(wsd::render::encode_pfm(film), 0) == 0);
+    CHECK(bytes.substr(bytes.find("\nWSDTILE ")) ==
+          "\nWSDTILE {\"format\":1,\"width\":3,\"height\":7,\"region\":[0,2,3,4],\"tile\":[2,3],"
+          "\"seed\":4294967295,\"scene_hash\":\"0123456789abcdef\",\"settings_hash\":\"fedcba9876543210\","
+          "\"scene\":\"dir/a \\\"quoted\\\" scene.wsd\"}\n");
 
     wsd::render::Film back;
     TileMeta meta_back;
@@ -134,6 +141,21 @@ TEST_CASE("a tile file round-trips its pixels and metadata", "[tiles]") {
     CHECK(meta_back.settings_hash == meta.settings_hash);
     CHECK(meta_back.tile_index == 2);
     CHECK(meta_back.scene == meta.scene);
+}
+
+TEST_CASE("a scene path that is not UTF-8 still gives a readable tile", "[tiles]") {
+    wsd::render::Film film;
+    film.width = film.height = 1;
+    film.rgb.assign(3, 1.0f);
+    TileMeta meta;
+    meta.full_width = meta.full_height = 1;
+    meta.region = {0, 0, 1, 1};
+    meta.scene = "caf\xe9.wsd";  // Latin-1
+    wsd::render::Film back;
+    TileMeta meta_back;
+    std::string error;
+    REQUIRE(decode_tile(encode_tile(film, meta), back, meta_back, error));
+    CHECK(meta_back.scene == "caf\xEF\xBF\xBD.wsd");  // the bad byte becomes U+FFFD
 }
 
 TEST_CASE("malformed tile files are refused with a reason", "[tiles]") {
@@ -159,6 +181,13 @@ TEST_CASE("malformed tile files are refused with a reason", "[tiles]") {
     std::string bad_json = good;
     bad_json.replace(bad_json.find("\"region\""), 8, "\"regio\"");
     CHECK_FALSE(decode_tile(bad_json, f, m, error));
+    CHECK(error.find("'region'") != std::string::npos);                      // says which field is wrong
+    CHECK_FALSE(decode_tile(good.substr(0, good.size() - 5), f, m, error));  // JSON cut short
+    CHECK(error.find("malformed WSDTILE metadata") != std::string::npos);
+    std::string bad_seed = good;
+    bad_seed.replace(bad_seed.find("\"seed\":0"), 8, "\"seed\":-1");
+    CHECK_FALSE(decode_tile(bad_seed, f, m, error));
+    CHECK(error.find("'seed'") != std::string::npos);
     TileMeta outside = meta;
     outside.region = {0, 3, 2, 5};  // beyond the 4 rows of the image
     CHECK_FALSE(decode_tile(encode_tile(film, outside), f, m, error));

@@ -3,6 +3,7 @@
 // exactly the single render, with every merge error naming the tile at fault.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app_test_util.h"
@@ -87,6 +88,19 @@ TEST_CASE("--stats-json writes the named keys", "[render]") {
     CHECK(json.find("\"camera_rays\": 1024,") != std::string::npos);  // 16×16 pixels × 4 supersamples
     CHECK(json.find("\"nonfinite_samples\": 0,") != std::string::npos);
     CHECK(json.find("\"peak_memory_bytes\": 0,") == std::string::npos);
+}
+
+TEST_CASE("--stats-json is valid JSON even for a scene path that is not UTF-8", "[render]") {
+    TempDir dir;
+    write_file(dir / "caf\xe9 \"1\".wsd", tiny_scene());  // Latin-1 é and quotes
+    const RunResult r = run_wsd(dir, "render 'caf\xe9 \"1\".wsd' -o a.png --quiet --stats-json stats.json");
+    REQUIRE(r.status == 0);
+    const auto json = nlohmann::json::parse(read_file(dir / "stats.json"), nullptr, false);
+    REQUIRE_FALSE(json.is_discarded());
+    CHECK(json["scene"] == "caf\xEF\xBF\xBD \"1\".wsd");
+    CHECK(json["camera_rays"] == 1024);
+    CHECK(json["render_seconds"].is_number());
+    CHECK(json["effects"].is_array());
 }
 
 TEST_CASE("a failed render leaves no output and no temporary file", "[render][atomic]") {

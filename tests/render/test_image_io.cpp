@@ -195,3 +195,21 @@ TEST_CASE("failed writes report why and leave nothing behind", "[image_io]") {
     CHECK_FALSE(read_image(dir.file("junk.png"), back, error));
     CHECK(error.find("junk.png") != std::string::npos);
 }
+
+TEST_CASE("decode_pfm says where the pixel data ends, and encode_pfm is what write_image writes",
+          "[image_io]") {
+    TempDir dir;
+    const Film film = gradient(3, 2, -1.0f, 7.0f);
+    std::string error;
+    REQUIRE(write_image(dir.file("a.pfm"), film, error));
+    std::ifstream in(dir.file("a.pfm"), std::ios::binary);
+    const std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = wsd::render::encode_pfm(film);
+    CHECK(bytes == written);
+
+    Film back;
+    CHECK(wsd::render::decode_pfm(bytes + "\nanything after", back, error) == bytes.size());
+    CHECK(back.rgb == film.rgb);
+    CHECK(wsd::render::decode_pfm(bytes.substr(0, bytes.size() - 1), back, error) == 0);
+    CHECK(error.find("truncated") != std::string::npos);
+}
