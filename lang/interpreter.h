@@ -1,7 +1,8 @@
 // The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
-// expressions into values, and hands each block statement to lowering, collecting the scene in a
-// SceneBuilder. Errors go to Diagnostics; evaluation continues past independent errors and stops
-// at limits, failed includes and "too many errors".
+// expressions into values and blocks into evaluated blocks (checked against their tables as they
+// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Errors go to
+// Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
+// many errors".
 #pragma once
 
 #include <memory>
@@ -118,8 +119,11 @@ private:
     void bind(std::string_view name, Span span, std::optional<Value> value);
     const Binding* find(std::string_view name) const;
     std::vector<std::string> visible_names() const;
-    std::optional<MaterialPtr> default_material(Span keyword);
 
+    // A block's items evaluated in order and checked against `table` as they are.
+    BlockReader eval_block(const BlockTable& table, const Block& block, Span keyword);
+    std::optional<Value> eval_block_expr(const BlockExpr& expr);
+    std::optional<Value> eval_image(const ImageExpr& expr);
     BlockContext context();
     void abort() { aborted_ = true; }
     bool stopped() const { return aborted_ || diags_.too_many(); }

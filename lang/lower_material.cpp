@@ -1,6 +1,6 @@
-// Lowering of material and texture values: `material { ... }` (with `base` applied first and the
-// reflection + transmission <= 1 rule), `image "file"` (resolved relative to the file naming it),
-// `checker { ... }` and `perlin { ... }`.
+// Lowering of checked material and texture blocks into values: `material { ... }` (with `base`
+// applied first and the reflection + transmission <= 1 rule), `image "file"` (resolved relative to
+// the file naming it), `checker { ... }` and `perlin { ... }`.
 #include <cmath>
 
 #include "lang/lower.h"
@@ -8,16 +8,6 @@
 namespace wsd::lang {
 
 namespace {
-
-// The head of a block expression: from its first token to the end of its '{' (or the keyword
-// alone), so that messages underline `material {` rather than the whole block.
-Span head_span(const BlockExpr& expr) {
-    Span s = expr.span;
-    if (expr.block && expr.block->open.end > s.begin && expr.block->open.end <= s.end &&
-        expr.block->open.file == s.file)
-        s.end = expr.block->open.end;
-    return s;
-}
 
 std::optional<render::PerlinKind> perlin_kind(std::string_view word) {
     if (word == "noise") return render::PerlinKind::Noise;
@@ -28,49 +18,49 @@ std::optional<render::PerlinKind> perlin_kind(std::string_view word) {
 }
 
 void read_colors(const BlockReader& r, render::TextureSpec& spec) {
-    const std::vector<Value>& colors = r.values("colors");
+    const std::vector<Value> colors = r.values("colors");
     if (colors.size() == 2) {
         spec.color1 = colors[0].vec3();
         spec.color2 = colors[1].vec3();
     }
 }
 
-TexturePtr lower_image(const ImageExpr& expr, BlockContext& ctx) {
-    const Expr& path_expr = *expr.path;
-    std::optional<Value> path = ctx.eval(path_expr);
-    if (!path) return nullptr;
+}  // namespace
+
+TexturePtr lower_image(const Value& path_value, Span path_span, BlockContext& ctx) {
+    const Value* path = &path_value;
     if (!path->is(ValueType::String)) {
-        ctx.diags.error(path_expr.span, std::string("'image' needs a file name (a string), found ") +
-                                            type_name(path->type()));
+        ctx.diags.error(
+            path_span, std::string("'image' needs a file name (a string), found ") + type_name(path->type()));
         return nullptr;
     }
     if (path->string().empty()) {
-        ctx.diags.error(path_expr.span, "'image' file name is empty");
+        ctx.diags.error(path_span, "'image' file name is empty");
         return nullptr;
     }
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Image;
-    t->spec.image_path = resolve_path(ctx.sources, expr.span.file, path->string());
-    t->span = path_expr.span;
+    t->spec.image_path = resolve_path(ctx.sources, path_span.file, path->string());
+    t->span = path_span;
     t->chain = ctx.chain;
     return t;
 }
 
-TexturePtr lower_checker(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("checker"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+namespace {
+
+TexturePtr lower_checker(BlockReader& r, BlockContext& ctx) {
     if (!r.ok()) return nullptr;
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Checker;
     r.apply(t->spec);
     read_colors(r, t->spec);
     t->fields = r.field_spans();
-    t->span = head_span(expr);
+    t->span = r.keyword();
     t->chain = ctx.chain;
     return t;
 }
 
-TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("perlin"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+TexturePtr lower_perlin(BlockReader& r, BlockContext& ctx) {
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Perlin;
     t->spec.perlin = perlin_kind(r.word("kind", "noise")).value_or(render::PerlinKind::Noise);
@@ -89,30 +79,20 @@ TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
     read_colors(r, t->spec);
     if (!r.ok()) return nullptr;
     t->fields = r.field_spans();
-    t->span = head_span(expr);
+    t->span = r.keyword();
     t->chain = ctx.chain;
     return t;
 }
 
 }  // namespace
 
-TexturePtr lower_texture(const Expr& expr, BlockContext& ctx) {
-    switch (expr.kind) {
-        case ExprKind::Image:
-            return lower_image(expr.as<ImageExpr>(), ctx);
-        case ExprKind::Checker:
-            return lower_checker(expr.as<BlockExpr>(), ctx);
-        case ExprKind::Perlin:
-            return lower_perlin(expr.as<BlockExpr>(), ctx);
-        default:
-            return nullptr;
-    }
+TexturePtr lower_texture(BlockReader& r, BlockContext& ctx) {
+    return r.table().element == render::Element::Perlin ? lower_perlin(r, ctx) : lower_checker(r, ctx);
 }
 
-MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("material"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+MaterialPtr lower_material(BlockReader& r, BlockContext& ctx) {
     auto m = std::make_shared<MaterialValue>();
-    m->span = head_span(expr);
+    m->span = r.keyword();
     m->chain = ctx.chain;
     // `base` first, wherever it is written: the other properties override the copy.
     const MaterialValue* base = r.value("base") ? r.value("base")->material().get() : nullptr;
