@@ -39,7 +39,7 @@ std::optional<Value> Interpreter::eval_block_expr(const BlockExpr& expr) {
     if (expr.kind == ExprKind::Material) {
         MaterialPtr m = lower_material(block, ctx);
         if (!m) return std::nullopt;
-        Span span = m->span;
+        Span span = m->block.keyword;
         return Value::make_material(std::move(m), span);
     }
     TexturePtr t = lower_texture(block, ctx);

@@ -33,4 +33,15 @@ struct EvaluatedBlock {
     std::vector<EvaluatedItem> items;
 };
 
+// A `material { ... }` value: its block as evaluated, every item a checked property of the
+// material table (`base`, `texture` and `bump` among them, as material and texture values). The
+// render::MaterialSpec is made from it (and its base's) by lower_material_spec when an object
+// uses it, once per material value.
+struct MaterialValue {
+    EvaluatedBlock block;  // block.keyword is the `material {` that made it
+    IncludeChain chain;    // where it was written
+    // The value of a property written in this block (not inherited from `base`), or null.
+    const Value* property(std::string_view name) const;
+};
+
 }  // namespace wsd::lang

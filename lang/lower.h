@@ -88,6 +88,15 @@ std::optional<Lowered<render::CameraSpec>> lower_camera(BlockReader& r);
 std::optional<Lowered<render::LightSpec>> lower_light(BlockReader& r);
 std::optional<LoweredObject> lower_object(BlockReader& r, BlockContext& ctx);
 MaterialPtr lower_material(BlockReader& r, BlockContext& ctx);
+
+// A material value's render spec, with the textures it names (its own or its base's) and the
+// value spans of its own block.
+struct LoweredMaterial {
+    render::MaterialSpec spec;
+    TexturePtr texture, bump;  // what spec.texture / spec.bump were made from
+    std::vector<FieldSpan> fields;
+};
+LoweredMaterial lower_material_spec(const MaterialValue& material);
 TexturePtr lower_texture(BlockReader& r, BlockContext& ctx);  // checker, perlin
 // `image "file"`: `path` is the evaluated file name, written at `path_span`.
 TexturePtr lower_image(const Value& path, Span path_span, BlockContext& ctx);

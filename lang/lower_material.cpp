@@ -91,19 +91,10 @@ TexturePtr lower_texture(BlockReader& r, BlockContext& ctx) {
 }
 
 MaterialPtr lower_material(BlockReader& r, BlockContext& ctx) {
-    auto m = std::make_shared<MaterialValue>();
-    m->span = r.keyword();
-    m->chain = ctx.chain;
-    // `base` first, wherever it is written: the other properties override the copy.
-    const MaterialValue* base = r.value("base") ? r.value("base")->material().get() : nullptr;
-    if (base) {
-        m->spec = base->spec;
-        m->texture = base->texture;
-        m->bump = base->bump;
-    }
-    render::MaterialSpec& s = m->spec;
+    // `base` first, wherever it is written: the other properties override it.
+    const Value* base = r.value("base");
+    render::MaterialSpec s = base ? lower_material_spec(*base->material()).spec : render::MaterialSpec{};
     r.apply(s);
-    if (const Value* tex = r.value("texture")) m->texture = tex->texture();
     if (const Value* bump = r.value("bump")) {
         if (bump->texture()->spec.kind != render::TextureKind::Perlin) {
             const char* kind =
@@ -111,7 +102,6 @@ MaterialPtr lower_material(BlockReader& r, BlockContext& ctx) {
             r.fail(r.value_span("bump"),
                    std::string("'bump' must be a perlin texture, found ") + kind + " texture");
         }
-        m->bump = bump->texture();
     }
     std::optional<std::string> sum_problem;
     if (r.ok()) sum_problem = render::reflection_transmission_problem(s.reflection, s.transmission);
@@ -131,16 +121,37 @@ MaterialPtr lower_material(BlockReader& r, BlockContext& ctx) {
         r.failed();
     }
     if (!r.ok()) return nullptr;
-    m->fields = r.field_spans();
-    if (m->texture)
-        s.texture = m->texture->spec;
-    else
-        s.texture.reset();
-    if (m->bump)
-        s.bump = m->bump->spec;
-    else
-        s.bump.reset();
+    auto m = std::make_shared<MaterialValue>();
+    m->block = std::move(r).take_block();
+    m->chain = ctx.chain;
     return m;
+}
+
+LoweredMaterial lower_material_spec(const MaterialValue& material) {
+    // The `base` chain, applied from its root: each block's properties override its base's.
+    std::vector<const MaterialValue*> chain;
+    for (const MaterialValue* m = &material; m;) {
+        chain.push_back(m);
+        const Value* base = m->property("base");
+        m = base ? base->material().get() : nullptr;
+    }
+    LoweredMaterial out;
+    const BlockTable& table = block_table("material");
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        apply_block(table, (*it)->block, &out.spec);
+        if (const Value* t = (*it)->property("texture")) out.texture = t->texture();
+        if (const Value* b = (*it)->property("bump")) out.bump = b->texture();
+    }
+    if (out.texture) out.spec.texture = out.texture->spec;
+    if (out.bump) out.spec.bump = out.bump->spec;
+    out.fields = block_field_spans(table, material.block);
+    return out;
+}
+
+const Value* MaterialValue::property(std::string_view name) const {
+    for (const EvaluatedItem& item : block.items)
+        if (item.name == name && !item.values.empty() && item.values[0].value) return &*item.values[0].value;
+    return nullptr;
 }
 
 }  // namespace wsd::lang

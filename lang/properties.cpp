@@ -375,27 +375,60 @@ std::string_view BlockReader::word(std::string_view name, std::string_view fallb
     return v ? std::string_view(v->string()) : fallback;
 }
 
+namespace {
+
+void set_field(const render::Field& f, const Value& v, void* spec) {
+    if (f.access.set_number && v.is(ValueType::Number)) f.access.set_number(spec, v.number());
+    if (f.access.set_number && v.is(ValueType::Bool)) f.access.set_number(spec, v.boolean() ? 1 : 0);
+    if (f.access.set_vec3 && v.is(ValueType::Vector3)) f.access.set_vec3(spec, v.vec3());
+}
+
+FieldSpan field_span(const BlockTable& table, const render::Field& f, Span at) {
+    const render::Field* first = render::element_table(table.element).fields.data();
+    return {at.begin, at.end, table.element, static_cast<uint8_t>(&f - first)};
+}
+
+}  // namespace
+
 void BlockReader::apply_fields(void* spec) const {
     for (size_t i = 0; i < slots_.size(); ++i) {
         const Slot& s = slots_[i];
         const render::Field* f = table_.properties[i].field;
         if (!s.valid || !f || item_of(&s)->values.empty()) continue;
-        const Value& v = *item_of(&s)->values[0].value;
-        if (f->access.set_number && v.is(ValueType::Number)) f->access.set_number(spec, v.number());
-        if (f->access.set_number && v.is(ValueType::Bool)) f->access.set_number(spec, v.boolean() ? 1 : 0);
-        if (f->access.set_vec3 && v.is(ValueType::Vector3)) f->access.set_vec3(spec, v.vec3());
+        set_field(*f, *item_of(&s)->values[0].value, spec);
     }
 }
 
 std::vector<FieldSpan> BlockReader::field_spans() const {
     std::vector<FieldSpan> out;
     out.reserve(slots_.size());
-    const render::Field* first = render::element_table(table_.element).fields.data();
     for (size_t i = 0; i < slots_.size(); ++i) {
         const render::Field* f = table_.properties[i].field;
         if (slots_[i].item < 0 || !f) continue;
-        const Span at = value_span(table_.properties[i].name);
-        out.push_back({at.begin, at.end, table_.element, static_cast<uint8_t>(f - first)});
+        out.push_back(field_span(table_, *f, value_span(table_.properties[i].name)));
+    }
+    return out;
+}
+
+void apply_block(const BlockTable& table, const EvaluatedBlock& block, void* spec) {
+    for (const EvaluatedItem& item : block.items) {
+        const Property* p = table.find(item.name);
+        if (p && p->field && !item.values.empty() && item.values[0].value)
+            set_field(*p->field, *item.values[0].value, spec);
+    }
+}
+
+std::vector<FieldSpan> block_field_spans(const BlockTable& table, const EvaluatedBlock& block) {
+    // In table order, as BlockReader::field_spans lists them.
+    std::vector<FieldSpan> out;
+    for (const Property& p : table.properties) {
+        if (!p.field) continue;
+        for (const EvaluatedItem& item : block.items) {
+            if (item.name != p.name) continue;
+            out.push_back(
+                field_span(table, *p.field, item.values.empty() ? item.name_span : item.values[0].span));
+            break;
+        }
     }
     return out;
 }

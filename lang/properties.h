@@ -74,6 +74,7 @@ public:
     void accept(EvaluatedValue value);
     void end_item();
     const EvaluatedBlock& block() const { return block_; }
+    EvaluatedBlock take_block() && { return std::move(block_); }
 
     bool ok() const { return ok_; }
     bool has(std::string_view name) const { return slot(name) && slot(name)->item >= 0; }
@@ -137,6 +138,12 @@ private:
     bool current_valid_ = false, current_transform_ = false;
     bool ok_ = true;
 };
+
+// For a block whose every item is a checked property of `table` (a block a reader found ok):
+// writes the properties that set a render field with access into `spec`, the spec struct of the
+// table's element, and lists the value span of each that sets a render field.
+void apply_block(const BlockTable& table, const EvaluatedBlock& block, void* spec);
+std::vector<FieldSpan> block_field_spans(const BlockTable& table, const EvaluatedBlock& block);
 
 // Whether property `a` is written after property `b` in the block (by source position).
 inline bool written_after(const BlockReader& r, std::string_view a, std::string_view b) {

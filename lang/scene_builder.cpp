@@ -53,10 +53,12 @@ uint32_t SceneBuilder::texture_tag(const TexturePtr& texture) {
 uint32_t SceneBuilder::material_index(const MaterialPtr& material) {
     auto it = material_ids_.find(material.get());
     if (it != material_ids_.end()) return it->second;
-    render::MaterialSpec spec = material->spec;
-    spec.tag = record(plain(material->span, material->chain), material->fields);
-    if (spec.texture && material->texture) spec.texture->tag = texture_tag(material->texture);
-    if (spec.bump && material->bump) spec.bump->tag = texture_tag(material->bump);
+    // Lowered once per material value, however many objects use it.
+    LoweredMaterial lowered = lower_material_spec(*material);
+    render::MaterialSpec& spec = lowered.spec;
+    spec.tag = record(plain(material->block.keyword, material->chain), lowered.fields);
+    if (spec.texture) spec.texture->tag = texture_tag(lowered.texture);
+    if (spec.bump) spec.bump->tag = texture_tag(lowered.bump);
     uint32_t index = static_cast<uint32_t>(scene_.spec.materials.size());
     scene_.spec.materials.push_back(std::move(spec));
     materials_.push_back(material);
