@@ -7,7 +7,7 @@
 namespace wsd::lang {
 
 BlockReader Interpreter::eval_block(const BlockTable& table, const Block& block, Span keyword) {
-    BlockReader reader(table, keyword, block.open, block.close, diags_);
+    BlockReader reader(table, keyword, block.open, block.close, diags_, block.items.size());
     for (const Item& item : block.items) {
         if (diags_.too_many()) {
             reader.failed();

@@ -143,9 +143,10 @@ std::optional<Value> Interpreter::lookup(std::string_view name) const {
     return b->value;
 }
 
-BlockContext Interpreter::context() {
+BlockContext Interpreter::context(bool default_material) {
     BlockContext ctx{sources_, diags_, chain_, {}, &obj_cache_};
-    if (const Binding* b = find("default_material")) ctx.default_material = {&b->value, b->span};
+    if (default_material)
+        if (const Binding* b = find("default_material")) ctx.default_material = {&b->value, b->span};
     return ctx;
 }
 
@@ -379,7 +380,8 @@ void Interpreter::exec_object(const ObjectStmt& stmt) {
         default:
             break;
     }
-    BlockContext ctx = context();
+    // Looked up only for an object that names no material of its own.
+    BlockContext ctx = context(!block.has("material"));
     std::optional<LoweredObject> object = lower_object(block, ctx);
     if (!object) return;
     if (scene_.primitives() + object->primitives > limits_.primitives) {

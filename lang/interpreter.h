@@ -124,7 +124,8 @@ private:
     BlockReader eval_block(const BlockTable& table, const Block& block, Span keyword);
     std::optional<Value> eval_block_expr(const BlockExpr& expr);
     std::optional<Value> eval_image(const ImageExpr& expr);
-    BlockContext context();
+    // `default_material`: whether to look up that binding (for an object that may need it).
+    BlockContext context(bool default_material = false);
     void abort() { aborted_ = true; }
     bool stopped() const { return aborted_ || diags_.too_many(); }
 

@@ -123,12 +123,14 @@ const Property* BlockTable::find(std::string_view name) const {
     return nullptr;
 }
 
-BlockReader::BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags)
-    : table_(table), block_{keyword, open, close, {}}, diags_(diags), slots_(table.properties.size()) {}
+BlockReader::BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
+                         size_t items)
+    : table_(table), block_{keyword, open, close, {}}, diags_(diags), slots_(table.properties.size()) {
+    block_.items.reserve(items);
+}
 
 BlockReader::BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags)
-    : BlockReader(table, block.keyword, block.open, block.close, diags) {
-    block_.items.reserve(block.items.size());
+    : BlockReader(table, block.keyword, block.open, block.close, diags, block.items.size()) {
     for (const EvaluatedItem& item : block.items) {
         if (diags_.too_many()) {
             ok_ = false;

@@ -65,8 +65,9 @@ class BlockReader {
 public:
     // Checks a whole block at once (a block built without an evaluator).
     BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags);
-    // An empty block, fed with admit/accept/end_item.
-    BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags);
+    // An empty block, fed with admit/accept/end_item (`items`: how many will be admitted).
+    BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
+                size_t items = 0);
 
     // `item` with its value spans (values not yet evaluated): checks its name and count.
     ItemRead admit(EvaluatedItem item);
