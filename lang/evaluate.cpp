@@ -1,6 +1,7 @@
 // Expression evaluation: literals, names (user scopes, then builtins), vectors and lists (packed
 // lists shared, not copied), operators with the language's type rules, calls, members and
 // indexing. Errors of binary operators point at the operator, of calls at the function's name.
+// Material and texture expressions are blocks: evaluate_block.cpp.
 #include <cmath>
 
 #include "lang/builtins.h"

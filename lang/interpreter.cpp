@@ -1,7 +1,8 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block statements handed
-// to lowering. Expressions are in evaluate.cpp.
+// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
+// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene. Expressions are
+// in evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>

@@ -1,5 +1,6 @@
-// The SceneBuilder: assembles lowered elements into a render::SceneSpec as statements run, with
-// one span record per tag (and the value spans of its fields), and maps render::build_scene's
+// The SceneBuilder: assembles lowered elements into a render::SceneSpec as statements run (a
+// material value is lowered to its spec when an object first uses it, once per value), with one
+// span record per tag (and the value spans of its fields), and maps render::build_scene's
 // SpecErrors back to those spans by the element, field and face they name.
 #include "lang/lower.h"
 
