@@ -7,16 +7,18 @@
 namespace wsd::lang {
 
 BlockReader Interpreter::eval_block(const BlockTable& table, const Block& block, Span keyword) {
-    BlockReader reader(table, keyword, block.open, block.close, diags_, block.items.size());
+    size_t values = 0;
+    for (const Item& item : block.items) values += item.values.size();
+    BlockReader reader(table, keyword, block.open, block.close, diags_, block.items.size(), values);
     for (const Item& item : block.items) {
         if (diags_.too_many()) {
             reader.failed();
             break;
         }
-        EvaluatedItem head{item.name, item.name_span, {}};
-        head.values.reserve(item.values.size());
-        for (const Expr* e : item.values) head.values.push_back({std::nullopt, e->span, false});
-        const ItemRead read = reader.admit(std::move(head));
+        // Free again before any value is evaluated (a nested block's evaluation reuses it).
+        value_spans_.clear();
+        for (const Expr* e : item.values) value_spans_.push_back(e->span);
+        const ItemRead read = reader.admit(item.name, item.name_span, value_spans_);
         for (const Expr* e : item.values) {
             if (read == ItemRead::Skip) break;
             if (read == ItemRead::Evaluate) {

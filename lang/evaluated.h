@@ -4,7 +4,9 @@
 // function of these: it never evaluates anything, so it needs no interpreter.
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -24,13 +26,24 @@ struct EvaluatedValue {
 struct EvaluatedItem {
     std::string_view name;  // "" for a triangle's leading vertices
     Span name_span;
-    std::vector<EvaluatedValue> values;  // one per value written
+    uint32_t first = 0, count = 0;  // its values: EvaluatedBlock::values[first, first + count)
 };
 
 struct EvaluatedBlock {
     Span keyword;  // the statement's keyword, or an expression's `material {` head
     Span open, close;
     std::vector<EvaluatedItem> items;
+    std::vector<EvaluatedValue> values;  // every item's values, one per value written, in order
+
+    std::span<const EvaluatedValue> values_of(const EvaluatedItem& item) const {
+        return {values.data() + item.first, item.count};
+    }
+    // Appends an item with its values.
+    void add(std::string_view name, Span name_span, std::vector<EvaluatedValue> item_values) {
+        items.push_back({name, name_span, static_cast<uint32_t>(values.size()),
+                         static_cast<uint32_t>(item_values.size())});
+        for (EvaluatedValue& v : item_values) values.push_back(std::move(v));
+    }
 };
 
 // A `material { ... }` value: its block as evaluated, every item a checked property of the

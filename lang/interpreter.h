@@ -150,6 +150,7 @@ private:
     std::unordered_map<std::string, bool> adds_objects_;  // canonical path -> its run added objects
     std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
     ObjCache obj_cache_;
+    std::vector<Span> value_spans_;  // eval_block's scratch: the value spans of the item it admits
 };
 
 }  // namespace wsd::lang

@@ -150,7 +150,8 @@ LoweredMaterial lower_material_spec(const MaterialValue& material) {
 
 const Value* MaterialValue::property(std::string_view name) const {
     for (const EvaluatedItem& item : block.items)
-        if (item.name == name && !item.values.empty() && item.values[0].value) return &*item.values[0].value;
+        if (item.name == name && item.count && block.values_of(item)[0].value)
+            return &*block.values_of(item)[0].value;
     return nullptr;
 }
 

@@ -124,20 +124,25 @@ const Property* BlockTable::find(std::string_view name) const {
 }
 
 BlockReader::BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
-                         size_t items)
-    : table_(table), block_{keyword, open, close, {}}, diags_(diags), slots_(table.properties.size()) {
+                         size_t items, size_t values)
+    : table_(table), block_{keyword, open, close, {}, {}}, diags_(diags), slots_(table.properties.size()) {
     block_.items.reserve(items);
+    block_.values.reserve(values);
 }
 
 BlockReader::BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags)
-    : BlockReader(table, block.keyword, block.open, block.close, diags, block.items.size()) {
+    : BlockReader(table, block.keyword, block.open, block.close, diags, block.items.size(),
+                  block.values.size()) {
+    std::vector<Span> spans;
     for (const EvaluatedItem& item : block.items) {
         if (diags_.too_many()) {
             ok_ = false;
             return;
         }
-        if (admit(item) != ItemRead::Skip)
-            for (const EvaluatedValue& v : item.values) accept(v);
+        spans.clear();
+        for (const EvaluatedValue& v : block.values_of(item)) spans.push_back(v.span);
+        if (admit(item.name, item.name_span, spans) != ItemRead::Skip)
+            for (const EvaluatedValue& v : block.values_of(item)) accept(v);
         end_item();
     }
 }
@@ -153,10 +158,11 @@ const BlockReader::Slot* BlockReader::slot(std::string_view name) const {
     return nullptr;
 }
 
-ItemRead BlockReader::admit(EvaluatedItem item) {
-    block_.items.push_back(std::move(item));
+ItemRead BlockReader::admit(std::string_view name, Span name_span, std::span<const Span> value_spans) {
+    block_.items.push_back({name, name_span, static_cast<uint32_t>(block_.values.size()),
+                            static_cast<uint32_t>(value_spans.size())});
+    for (Span v : value_spans) block_.values.push_back({std::nullopt, v, false});  // filled by accept
     const EvaluatedItem& it = block_.items.back();
-    for (EvaluatedValue& v : block_.items.back().values) v.value.reset();  // filled by accept
     next_value_ = 0;
     current_ = nullptr;
     current_transform_ = false;
@@ -176,8 +182,8 @@ ItemRead BlockReader::admit(EvaluatedItem item) {
     Slot& s = slots_[static_cast<size_t>(p - table_.properties.data())];
     if (s.item >= 0) {
         const EvaluatedItem& prior = block_.items[static_cast<size_t>(s.item)];
-        Span at = it.name.empty() && !it.values.empty() ? it.values[0].span : it.name_span;
-        Span first = prior.name.empty() && !prior.values.empty() ? prior.values[0].span : prior.name_span;
+        Span at = it.name.empty() && it.count ? values_of(it)[0].span : it.name_span;
+        Span first = prior.name.empty() && prior.count ? values_of(prior)[0].span : prior.name_span;
         Diagnostic& d = diags_.error(at, "repeated property " + quoted(it.name) + " in " + table_.what);
         d.notes.push_back({first, "first given here"});
         ok_ = false;
@@ -194,9 +200,9 @@ ItemRead BlockReader::admit(EvaluatedItem item) {
 }
 
 void BlockReader::accept(EvaluatedValue value) {
-    EvaluatedItem& item = block_.items.back();
-    if (next_value_ >= item.values.size()) return;
-    EvaluatedValue& v = item.values[next_value_++];
+    const EvaluatedItem& item = block_.items.back();
+    if (next_value_ >= item.count) return;
+    EvaluatedValue& v = block_.values[item.first + next_value_++];
     v = std::move(value);
     if (current_transform_) {
         if (next_value_ == 1) read_transform(item);
@@ -214,7 +220,7 @@ void BlockReader::accept(EvaluatedValue value) {
 void BlockReader::end_item() {
     if (current_) {
         Slot& s = slots_[static_cast<size_t>(current_ - table_.properties.data())];
-        s.valid = current_valid_ && next_value_ == block_.items.back().values.size();
+        s.valid = current_valid_ && next_value_ == block_.items.back().count;
         if (!s.valid) ok_ = false;
     }
     current_ = nullptr;
@@ -224,7 +230,7 @@ void BlockReader::end_item() {
 void BlockReader::report_unknown(const EvaluatedItem& item) {
     ok_ = false;
     if (item.name.empty()) {
-        Span at = item.values.empty() ? item.name_span : item.values[0].span;
+        Span at = item.count ? values_of(item)[0].span : item.name_span;
         diags_.error(at, "expected a property name in " + table_.what);
         return;
     }
@@ -255,7 +261,7 @@ void BlockReader::report_unknown(const EvaluatedItem& item) {
 }
 
 bool BlockReader::check_count(const Property& p, const EvaluatedItem& item) {
-    int n = static_cast<int>(item.values.size());
+    int n = static_cast<int>(item.count);
     if (n >= p.min_values && n <= p.max_values) return true;
     std::string what = p.name.empty() ? table_.what : quoted(p.name);
     std::string wanted = p.min_values == p.max_values
@@ -264,7 +270,7 @@ bool BlockReader::check_count(const Property& p, const EvaluatedItem& item) {
     std::string noun = p.name.empty() ? " vertices" : (p.max_values == 1 ? " value" : " values");
     std::string message = what + " takes " + wanted + noun + ", found " + std::to_string(n);
     if (n > p.max_values)
-        diags_.error(item.values[static_cast<size_t>(p.max_values)].span, message);
+        diags_.error(values_of(item)[static_cast<size_t>(p.max_values)].span, message);
     else
         diags_.error(item.name.empty() ? block_.keyword : item.name_span, message);
     return false;
@@ -302,7 +308,7 @@ bool BlockReader::check_value(const Property& p, const Value& v, Span at) {
 }
 
 void BlockReader::read_transform(const EvaluatedItem& item) {
-    const EvaluatedValue& ev = item.values[0];
+    const EvaluatedValue& ev = values_of(item)[0];
     if (!ev.value || !check_value(transform_property(item.name), *ev.value, ev.span)) {
         ok_ = false;
         return;
@@ -330,20 +336,20 @@ std::vector<Value> BlockReader::values(std::string_view name) const {
     std::vector<Value> out;
     const Slot* s = slot(name);
     if (s && s->valid)
-        for (const EvaluatedValue& v : item_of(s)->values) out.push_back(*v.value);
+        for (const EvaluatedValue& v : values_of(*item_of(s))) out.push_back(*v.value);
     return out;
 }
 
 const Value* BlockReader::value(std::string_view name) const {
     const Slot* s = slot(name);
-    if (!s || !s->valid || item_of(s)->values.empty()) return nullptr;
-    return &*item_of(s)->values[0].value;
+    if (!s || !s->valid || !item_of(s)->count) return nullptr;
+    return &*values_of(*item_of(s))[0].value;
 }
 
 Span BlockReader::value_span(std::string_view name, size_t i) const {
     const EvaluatedItem* item = item_of(slot(name));
     if (!item) return block_.keyword;
-    if (i < item->values.size()) return item->values[i].span;
+    if (i < item->count) return values_of(*item)[i].span;
     return item->name_span;
 }
 
@@ -396,8 +402,8 @@ void BlockReader::apply_fields(void* spec) const {
     for (size_t i = 0; i < slots_.size(); ++i) {
         const Slot& s = slots_[i];
         const render::Field* f = table_.properties[i].field;
-        if (!s.valid || !f || item_of(&s)->values.empty()) continue;
-        set_field(*f, *item_of(&s)->values[0].value, spec);
+        if (!s.valid || !f || !item_of(&s)->count) continue;
+        set_field(*f, *values_of(*item_of(&s))[0].value, spec);
     }
 }
 
@@ -415,8 +421,8 @@ std::vector<FieldSpan> BlockReader::field_spans() const {
 void apply_block(const BlockTable& table, const EvaluatedBlock& block, void* spec) {
     for (const EvaluatedItem& item : block.items) {
         const Property* p = table.find(item.name);
-        if (p && p->field && !item.values.empty() && item.values[0].value)
-            set_field(*p->field, *item.values[0].value, spec);
+        if (p && p->field && item.count && block.values_of(item)[0].value)
+            set_field(*p->field, *block.values_of(item)[0].value, spec);
     }
 }
 
@@ -428,7 +434,7 @@ std::vector<FieldSpan> block_field_spans(const BlockTable& table, const Evaluate
         for (const EvaluatedItem& item : block.items) {
             if (item.name != p.name) continue;
             out.push_back(
-                field_span(table, *p.field, item.values.empty() ? item.name_span : item.values[0].span));
+                field_span(table, *p.field, item.count ? block.values_of(item)[0].span : item.name_span));
             break;
         }
     }

@@ -65,12 +65,12 @@ class BlockReader {
 public:
     // Checks a whole block at once (a block built without an evaluator).
     BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags);
-    // An empty block, fed with admit/accept/end_item (`items`: how many will be admitted).
+    // An empty block, fed with admit/accept/end_item (`items`, `values`: how many will be admitted).
     BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
-                size_t items = 0);
+                size_t items = 0, size_t values = 0);
 
-    // `item` with its value spans (values not yet evaluated): checks its name and count.
-    ItemRead admit(EvaluatedItem item);
+    // An item and the spans of its values (not yet evaluated): checks its name and count.
+    ItemRead admit(std::string_view name, Span name_span, std::span<const Span> value_spans);
     // The next value of the item last admitted: checks and keeps it.
     void accept(EvaluatedValue value);
     void end_item();
@@ -125,6 +125,9 @@ private:
     void report_unknown(const EvaluatedItem& item);
     void read_transform(const EvaluatedItem& item);
     bool check_count(const Property& p, const EvaluatedItem& item);
+    std::span<const EvaluatedValue> values_of(const EvaluatedItem& item) const {
+        return block_.values_of(item);
+    }
     bool check_word(const Property& p, const EvaluatedValue& v);
     bool check_value(const Property& p, const Value& v, Span at);
 

@@ -12,18 +12,26 @@ Span at(uint32_t begin, uint32_t end) {
     return Span{0, begin, end};
 }
 
+struct HandItem {
+    std::string_view name;
+    Span name_span;
+    std::vector<EvaluatedValue> values;
+};
+
 // An item `name value` whose name is written at [10k, 10k+5) and its value at [10k+6, 10k+9).
-EvaluatedItem item(std::string_view name, Value value, uint32_t k) {
+HandItem item(std::string_view name, Value value, uint32_t k) {
     const Span value_span = at(10 * k + 6, 10 * k + 9);
     value.set_span(value_span);
     return {name, at(10 * k, 10 * k + 5), {{std::move(value), value_span, false}}};
 }
 
-EvaluatedBlock block(std::vector<EvaluatedItem> items) {
-    return {at(0, 6), at(7, 8), at(900, 901), std::move(items)};
+EvaluatedBlock block(std::vector<HandItem> items) {
+    EvaluatedBlock b{at(0, 6), at(7, 8), at(900, 901), {}, {}};
+    for (HandItem& i : items) b.add(i.name, i.name_span, std::move(i.values));
+    return b;
 }
 
-MaterialPtr material(Diagnostics& diags, std::vector<EvaluatedItem> items) {
+MaterialPtr material(Diagnostics& diags, std::vector<HandItem> items) {
     SourceManager sources;
     BlockContext ctx{sources, diags, nullptr};
     BlockReader r(block_table("material"), block(std::move(items)), diags);
@@ -98,7 +106,7 @@ TEST_CASE("a material's spec applies its base first, then its own properties, te
 TEST_CASE("a hand-built block is checked against its table", "[lower][seam]") {
     Diagnostics diags;
     SourceManager sources;
-    EvaluatedItem kind{"kind", at(10, 14), {{Value::make_string("marbel", at(15, 21)), at(15, 21), true}}};
+    HandItem kind{"kind", at(10, 14), {{Value::make_string("marbel", at(15, 21)), at(15, 21), true}}};
     BlockReader r(block_table("perlin"),
                   block({item("scael", Value::make_number(2, {}), 3), std::move(kind),
                          item("colors", Value::make_bool(true, {}), 4)}),
