@@ -12,6 +12,7 @@
 
 #include "lang/source.h"
 #include "lang/value.h"
+#include "render/params.h"
 
 namespace wsd::lang {
 
@@ -30,7 +31,8 @@ struct EvaluatedItem {
 };
 
 struct EvaluatedBlock {
-    Span keyword;  // the statement's keyword, or an expression's `material {` head
+    render::Element kind;  // the element its table describes (render::Element::Sphere, ...)
+    Span keyword;          // the statement's keyword, or an expression's `material {` head
     Span open, close;
     std::vector<EvaluatedItem> items;
     std::vector<EvaluatedValue> values;  // every item's values, one per value written, in order

@@ -125,7 +125,10 @@ const Property* BlockTable::find(std::string_view name) const {
 
 BlockReader::BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
                          size_t items, size_t values)
-    : table_(table), block_{keyword, open, close, {}, {}}, diags_(diags), slots_(table.properties.size()) {
+    : table_(table),
+      block_{table.element, keyword, open, close, {}, {}},
+      diags_(diags),
+      slots_(table.properties.size()) {
     block_.items.reserve(items);
     block_.values.reserve(values);
 }
@@ -133,6 +136,7 @@ BlockReader::BlockReader(const BlockTable& table, Span keyword, Span open, Span 
 BlockReader::BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags)
     : BlockReader(table, block.keyword, block.open, block.close, diags, block.items.size(),
                   block.values.size()) {
+    assert(block.kind == table.element);
     std::vector<Span> spans;
     for (const EvaluatedItem& item : block.items) {
         if (diags_.too_many()) {

@@ -25,8 +25,8 @@ HandItem item(std::string_view name, Value value, uint32_t k) {
     return {name, at(10 * k, 10 * k + 5), {{std::move(value), value_span, false}}};
 }
 
-EvaluatedBlock block(std::vector<HandItem> items) {
-    EvaluatedBlock b{at(0, 6), at(7, 8), at(900, 901), {}, {}};
+EvaluatedBlock block(wsd::render::Element kind, std::vector<HandItem> items) {
+    EvaluatedBlock b{kind, at(0, 6), at(7, 8), at(900, 901), {}, {}};
     for (HandItem& i : items) b.add(i.name, i.name_span, std::move(i.values));
     return b;
 }
@@ -34,7 +34,7 @@ EvaluatedBlock block(std::vector<HandItem> items) {
 MaterialPtr material(Diagnostics& diags, std::vector<HandItem> items) {
     SourceManager sources;
     BlockContext ctx{sources, diags, nullptr};
-    BlockReader r(block_table("material"), block(std::move(items)), diags);
+    BlockReader r(block_table("material"), block(wsd::render::Element::Material, std::move(items)), diags);
     return lower_material(r, ctx);
 }
 
@@ -45,12 +45,13 @@ TEST_CASE("a hand-built sphere block lowers to a shape and its material to a ren
     SourceManager sources;
     MaterialPtr red = material(diags, {item("color", Value::make_vec3({1, 0, 0}, {}), 1)});
     REQUIRE(red);
-    BlockReader r(block_table("sphere"),
-                  block({item("center", Value::make_vec3({1, 2, 3}, {}), 1),
-                         item("radius", Value::make_number(2, {}), 2),
-                         item("material", Value::make_material(red, {}), 3),
-                         item("translate", Value::make_vec3({0, 1, 0}, {}), 4)}),
-                  diags);
+    BlockReader r(
+        block_table("sphere"),
+        block(wsd::render::Element::Sphere, {item("center", Value::make_vec3({1, 2, 3}, {}), 1),
+                                             item("radius", Value::make_number(2, {}), 2),
+                                             item("material", Value::make_material(red, {}), 3),
+                                             item("translate", Value::make_vec3({0, 1, 0}, {}), 4)}),
+        diags);
     BlockContext ctx{sources, diags, nullptr};
     std::optional<LoweredObject> o = lower_object(r, ctx);
     REQUIRE(o);
@@ -79,7 +80,8 @@ TEST_CASE("a material's spec applies its base first, then its own properties, te
     SourceManager sources;
     BlockContext ctx{sources, diags, nullptr};
     BlockReader checker(block_table("checker"),
-                        block({{"colors",
+                        block(wsd::render::Element::Checker,
+                              {{"colors",
                                 at(10, 16),
                                 {{Value::make_vec3({1, 1, 1}, at(17, 20)), at(17, 20), false},
                                  {Value::make_vec3({0, 0, 0}, at(22, 25)), at(22, 25), false}}}}),
@@ -107,10 +109,11 @@ TEST_CASE("a hand-built block is checked against its table", "[lower][seam]") {
     Diagnostics diags;
     SourceManager sources;
     HandItem kind{"kind", at(10, 14), {{Value::make_string("marbel", at(15, 21)), at(15, 21), true}}};
-    BlockReader r(block_table("perlin"),
-                  block({item("scael", Value::make_number(2, {}), 3), std::move(kind),
-                         item("colors", Value::make_bool(true, {}), 4)}),
-                  diags);
+    BlockReader r(
+        block_table("perlin"),
+        block(wsd::render::Element::Perlin, {item("scael", Value::make_number(2, {}), 3), std::move(kind),
+                                             item("colors", Value::make_bool(true, {}), 4)}),
+        diags);
     CHECK_FALSE(r.ok());
     std::vector<std::string> messages;
     for (const Diagnostic& d : diags.all())
