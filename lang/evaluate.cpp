@@ -1,6 +1,7 @@
 // Expression evaluation: literals, names (user scopes, then builtins), vectors and lists (packed
 // lists shared, not copied), operators with the language's type rules, calls, members and
 // indexing. Errors of binary operators point at the operator, of calls at the function's name.
+// Material and texture expressions are blocks: evaluate_block.cpp.
 #include <cmath>
 
 #include "lang/builtins.h"
@@ -59,21 +60,12 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
             return eval_member(expr.as<MemberExpr>());
         case ExprKind::Index:
             return eval_index(expr.as<IndexExpr>());
-        case ExprKind::Material: {
-            BlockContext ctx = context();
-            MaterialPtr m = lower_material(expr.as<BlockExpr>(), ctx);
-            if (!m) return std::nullopt;
-            Span span = m->span;
-            return Value::make_material(std::move(m), span);
-        }
-        case ExprKind::Image:
+        case ExprKind::Material:
         case ExprKind::Checker:
-        case ExprKind::Perlin: {
-            BlockContext ctx = context();
-            TexturePtr t = lower_texture(expr, ctx);
-            if (!t) return std::nullopt;
-            return Value::make_texture(std::move(t), expr.span);
-        }
+        case ExprKind::Perlin:
+            return eval_block_expr(expr.as<BlockExpr>());
+        case ExprKind::Image:
+            return eval_image(expr.as<ImageExpr>());
         case ExprKind::Bad:
             return std::nullopt;  // the parser reported it
     }

@@ -1,7 +1,8 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block statements handed
-// to lowering. Expressions are in evaluate.cpp.
+// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
+// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene. Expressions are
+// in evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>
@@ -122,26 +123,11 @@ std::optional<Value> Interpreter::lookup(std::string_view name) const {
     return b->value;
 }
 
-std::optional<MaterialPtr> Interpreter::default_material(Span keyword) {
-    const Binding* b = find("default_material");
-    if (!b) return MaterialPtr{};
-    if (!b->value) return std::nullopt;
-    if (!b->value->is(ValueType::Material)) {
-        Diagnostic& d = diags_.error(keyword, std::string("'default_material' is a ") +
-                                                  type_name(b->value->type()) + ", not a material");
-        d.notes.push_back({b->span, "'default_material' is defined here"});
-        return std::nullopt;
-    }
-    return b->value->material();
-}
-
-BlockContext Interpreter::context() {
-    return BlockContext{sources_,
-                        diags_,
-                        [this](const Expr& e) { return eval(e); },
-                        chain_,
-                        [this](Span keyword) { return default_material(keyword); },
-                        &obj_cache_};
+BlockContext Interpreter::context(bool default_material) {
+    BlockContext ctx{sources_, diags_, chain_, {}, &obj_cache_};
+    if (default_material)
+        if (const Binding* b = find("default_material")) ctx.default_material = {&b->value, b->span};
+    return ctx;
 }
 
 // ---- statements --------------------------------------------------------------------------------
@@ -344,38 +330,39 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
 }
 
 void Interpreter::exec_object(const ObjectStmt& stmt) {
-    BlockContext ctx = context();
+    const BlockTable* table = statement_table(stmt, diags_);
+    if (!table) return;
+    std::optional<Span>* first = nullptr;  // a settings or camera block
+    if (stmt.block_kind == BlockKind::Settings) first = &first_settings_;
+    if (stmt.block_kind == BlockKind::Camera) first = &first_camera_;
+    // A second settings or camera is an error, but its properties are still checked (then dropped).
+    const bool second = first && first->has_value();
+    if (second) {
+        const bool camera = stmt.block_kind == BlockKind::Camera;
+        Diagnostic& d =
+            diags_.error(stmt.keyword, camera ? "more than one camera" : "more than one 'settings' block");
+        d.notes.push_back(
+            {**first, camera ? "the first camera is here" : "the first 'settings' block is here"});
+    } else if (first) {
+        *first = stmt.keyword;
+    }
+    BlockReader block = eval_block(*table, stmt.block, stmt.keyword);
     switch (stmt.block_kind) {
         case BlockKind::Settings:
-        case BlockKind::Camera: {
-            const bool camera = stmt.block_kind == BlockKind::Camera;
-            std::optional<Span>& first = camera ? first_camera_ : first_settings_;
-            // A second one is an error, but its properties are still checked (and then dropped).
-            const bool second = first.has_value();
-            if (second) {
-                Diagnostic& d = diags_.error(
-                    stmt.keyword, camera ? "more than one camera" : "more than one 'settings' block");
-                d.notes.push_back(
-                    {*first, camera ? "the first camera is here" : "the first 'settings' block is here"});
-            } else {
-                first = stmt.keyword;
-            }
-            if (camera) {
-                auto c = lower_camera(stmt, ctx);
-                if (c && !second) scene_.set_camera(*c, stmt.keyword, chain_);
-            } else {
-                auto s = lower_settings(stmt, ctx);
-                if (s && !second) scene_.set_settings(*s, stmt.keyword, chain_);
-            }
+            if (auto s = lower_settings(block); s && !second) scene_.set_settings(*s, stmt.keyword, chain_);
             return;
-        }
+        case BlockKind::Camera:
+            if (auto c = lower_camera(block); c && !second) scene_.set_camera(*c, stmt.keyword, chain_);
+            return;
         case BlockKind::Light:
-            if (auto l = lower_light(stmt, ctx)) scene_.add_light(*l, stmt.keyword, chain_);
+            if (auto l = lower_light(block)) scene_.add_light(*l, stmt.keyword, chain_);
             return;
         default:
             break;
     }
-    std::optional<LoweredObject> object = lower_object(stmt, ctx);
+    // Looked up only for an object that names no material of its own.
+    BlockContext ctx = context(!block.has("material"));
+    std::optional<LoweredObject> object = lower_object(block, ctx);
     if (!object) return;
     if (scene_.primitives() + object->primitives > limits_.primitives) {
         diags_.error(stmt.keyword, "the scene has more than " + std::to_string(limits_.primitives) +

@@ -1,7 +1,8 @@
 // The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
-// expressions into values, and hands each block statement to lowering, collecting the scene in a
-// SceneBuilder. Errors go to Diagnostics; evaluation continues past independent errors and stops
-// at limits, failed includes and "too many errors".
+// expressions into values and blocks into evaluated blocks (checked against their tables as they
+// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Errors go to
+// Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
+// many errors".
 #pragma once
 
 #include <memory>
@@ -118,9 +119,13 @@ private:
     void bind(std::string_view name, Span span, std::optional<Value> value);
     const Binding* find(std::string_view name) const;
     std::vector<std::string> visible_names() const;
-    std::optional<MaterialPtr> default_material(Span keyword);
 
-    BlockContext context();
+    // A block's items evaluated in order and checked against `table` as they are.
+    BlockReader eval_block(const BlockTable& table, const Block& block, Span keyword);
+    std::optional<Value> eval_block_expr(const BlockExpr& expr);
+    std::optional<Value> eval_image(const ImageExpr& expr);
+    // `default_material`: whether to look up that binding (for an object that may need it).
+    BlockContext context(bool default_material = false);
     void abort() { aborted_ = true; }
     bool stopped() const { return aborted_ || diags_.too_many(); }
 
@@ -145,6 +150,7 @@ private:
     std::unordered_map<std::string, bool> adds_objects_;  // canonical path -> its run added objects
     std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
     ObjCache obj_cache_;
+    std::vector<Span> value_spans_;  // eval_block's scratch: the value spans of the item it admits
 };
 
 }  // namespace wsd::lang

@@ -1,6 +1,6 @@
-// The property tables of every block, and the lowering of settings, camera, lights and objects
-// (spheres, boxes, triangles, planes; meshes in lower_mesh.cpp) into render spec elements, with
-// the cross-property checks the tables cannot express. Transforms compose here too.
+// The property tables of every block, and the lowering of checked settings, camera, light and
+// object blocks (spheres, boxes, triangles, planes; meshes in lower_mesh.cpp) into render spec
+// elements, with the cross-property checks the tables cannot express. Transforms compose here too.
 #include "lang/lower.h"
 
 #include <cmath>
@@ -111,14 +111,21 @@ std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
     if (const Value* m = r.value("material")) return m->material();
     // Present but failed, or meant by a misspelt name: already reported.
     if (r.has("material") || r.suggested("material")) return std::nullopt;
-    std::optional<MaterialPtr> fallback = ctx.default_material(r.keyword());
-    if (!fallback) return std::nullopt;
-    if (!*fallback) {
+    const DefaultMaterial& fallback = ctx.default_material;
+    if (!fallback.value) {
         Diagnostic& d = ctx.diags.error(r.keyword(), "missing property 'material' in " + r.table().what);
         d.help.push_back("add 'material { ... }' or 'let default_material = material { ... }'");
         return std::nullopt;
     }
-    return fallback;
+    const std::optional<Value>& v = *fallback.value;
+    if (!v) return std::nullopt;  // its definition failed: already reported
+    if (!v->is(ValueType::Material)) {
+        Diagnostic& d = ctx.diags.error(
+            r.keyword(), std::string("'default_material' is a ") + type_name(v->type()) + ", not a material");
+        d.notes.push_back({fallback.defined_at, "'default_material' is defined here"});
+        return std::nullopt;
+    }
+    return v->material();
 }
 
 void lower_sphere(BlockReader& r, LoweredObject& o) {
@@ -143,10 +150,10 @@ void lower_triangle(BlockReader& r, LoweredObject& o) {
     r.require("");
     o.shape.kind = render::ShapeKind::Triangle;
     o.is_triangle = true;
-    const std::vector<Value>& v = r.values("");
+    const std::vector<Value> v = r.values("");
     if (v.size() == 3)
         for (int i = 0; i < 3; ++i) o.shape.v[i] = v[static_cast<size_t>(i)].vec3();
-    const std::vector<Value>& uv = r.values("uv");
+    const std::vector<Value> uv = r.values("uv");
     if (uv.size() == 3)
         o.shape.tri_uv = std::array<render::Vec2, 3>{uv[0].vec2(), uv[1].vec2(), uv[2].vec2()};
 }
@@ -163,6 +170,50 @@ void lower_plane(BlockReader& r, LoweredObject& o) {
 const BlockTable& block_table(std::string_view what) {
     static const std::map<std::string_view, BlockTable> tables = make_tables();
     return tables.at(what);
+}
+
+const BlockTable* statement_table(const ObjectStmt& stmt, Diagnostics& diags) {
+    switch (stmt.block_kind) {
+        case BlockKind::Settings:
+            return &block_table("settings");
+        case BlockKind::Camera:
+            return &block_table("camera");
+        case BlockKind::Light:
+            break;
+        case BlockKind::Sphere:
+            return &block_table("sphere");
+        case BlockKind::Box:
+            return &block_table("box");
+        case BlockKind::Triangle:
+            return &block_table("triangle");
+        case BlockKind::Plane:
+            return &block_table("plane");
+        case BlockKind::Mesh:
+            return &block_table("mesh");
+    }
+    if (stmt.name == "area") return &block_table("light area");
+    if (stmt.name == "point") return &block_table("light point");
+    Span at = stmt.name.empty() ? stmt.keyword : stmt.name_span;
+    Diagnostic& d = diags.error(
+        at, stmt.name.empty() ? std::string("light needs a kind: point or area")
+                              : "unknown light kind '" + std::string(stmt.name) + "' (point or area)");
+    std::string match = closest_match(stmt.name, {"point", "area"});
+    if (!stmt.name.empty() && !match.empty()) d.help.push_back("did you mean '" + match + "'?");
+    return nullptr;
+}
+
+Span head_span(const BlockExpr& expr) {
+    Span s = expr.span;
+    if (expr.block && expr.block->open.end > s.begin && expr.block->open.end <= s.end &&
+        expr.block->open.file == s.file)
+        s.end = expr.block->open.end;
+    return s;
+}
+
+const BlockTable& expression_table(ExprKind kind) {
+    return block_table(kind == ExprKind::Checker  ? "checker"
+                       : kind == ExprKind::Perlin ? "perlin"
+                                                  : "material");
 }
 
 std::string resolve_path(const SourceManager& sources, uint32_t file, const std::string& path) {
@@ -214,8 +265,7 @@ render::Mat4 compose_transforms(const std::vector<Transform>& transforms) {
     return m;
 }
 
-std::optional<Lowered<render::Settings>> lower_settings(const ObjectStmt& stmt, BlockContext& ctx) {
-    BlockReader r(block_table("settings"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
+std::optional<Lowered<render::Settings>> lower_settings(BlockReader& r) {
     render::Settings s;
     r.apply(s);
     if (r.ok()) {
@@ -230,8 +280,7 @@ std::optional<Lowered<render::Settings>> lower_settings(const ObjectStmt& stmt, 
     return Lowered<render::Settings>{s, r.field_spans()};
 }
 
-std::optional<Lowered<render::CameraSpec>> lower_camera(const ObjectStmt& stmt, BlockContext& ctx) {
-    BlockReader r(block_table("camera"), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
+std::optional<Lowered<render::CameraSpec>> lower_camera(BlockReader& r) {
     r.require("position");
     r.require("look_at");
     render::CameraSpec c;
@@ -254,22 +303,10 @@ std::optional<Lowered<render::CameraSpec>> lower_camera(const ObjectStmt& stmt, 
     return Lowered<render::CameraSpec>{c, r.field_spans()};
 }
 
-std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, BlockContext& ctx) {
+std::optional<Lowered<render::LightSpec>> lower_light(BlockReader& r) {
     render::LightSpec l;
-    if (stmt.name == "area") {
-        l.kind = render::LightKind::Area;
-    } else if (stmt.name != "point") {
-        Span at = stmt.name.empty() ? stmt.keyword : stmt.name_span;
-        Diagnostic& d = ctx.diags.error(
-            at, stmt.name.empty() ? std::string("light needs a kind: point or area")
-                                  : "unknown light kind '" + std::string(stmt.name) + "' (point or area)");
-        std::string match = closest_match(stmt.name, {"point", "area"});
-        if (!stmt.name.empty() && !match.empty()) d.help.push_back("did you mean '" + match + "'?");
-        return std::nullopt;
-    }
-    bool area = l.kind == render::LightKind::Area;
-    BlockReader r(block_table(area ? "light area" : "light point"), stmt.block, stmt.keyword, ctx.diags,
-                  ctx.eval);
+    const bool area = r.table().element == render::Element::AreaLight;
+    if (area) l.kind = render::LightKind::Area;
     r.require("position");
     r.apply(l);
     if (r.ok()) {
@@ -279,7 +316,7 @@ std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, Bl
     if (area) {
         r.require("u");
         r.require("v");
-        const std::vector<Value>& samples = r.values("samples");
+        const std::vector<Value> samples = r.values("samples");
         if (!samples.empty()) {
             l.samples_u = static_cast<int>(samples[0].number());
             l.samples_v = static_cast<int>(samples.size() > 1 ? samples[1].number() : samples[0].number());
@@ -302,47 +339,28 @@ std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, Bl
     return Lowered<render::LightSpec>{l, r.field_spans()};
 }
 
-std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx) {
-    const char* what = "sphere";
-    switch (stmt.block_kind) {
-        case BlockKind::Sphere:
-            what = "sphere";
+std::optional<LoweredObject> lower_object(BlockReader& r, BlockContext& ctx) {
+    LoweredObject o;
+    o.record.span = r.keyword();
+    r.apply(o.shape);
+    switch (r.table().element) {
+        case render::Element::Sphere:
+            lower_sphere(r, o);
             break;
-        case BlockKind::Box:
-            what = "box";
+        case render::Element::Box:
+            lower_box(r, o);
             break;
-        case BlockKind::Triangle:
-            what = "triangle";
+        case render::Element::Triangle:
+            lower_triangle(r, o);
             break;
-        case BlockKind::Plane:
-            what = "plane";
+        case render::Element::Plane:
+            lower_plane(r, o);
             break;
-        case BlockKind::Mesh:
-            what = "mesh";
+        case render::Element::Mesh:
+            lower_mesh(r, ctx, o);
             break;
         default:
             return std::nullopt;
-    }
-    BlockReader r(block_table(what), stmt.block, stmt.keyword, ctx.diags, ctx.eval);
-    LoweredObject o;
-    o.record.span = stmt.keyword;
-    r.apply(o.shape);
-    switch (stmt.block_kind) {
-        case BlockKind::Sphere:
-            lower_sphere(r, o);
-            break;
-        case BlockKind::Box:
-            lower_box(r, o);
-            break;
-        case BlockKind::Triangle:
-            lower_triangle(r, o);
-            break;
-        case BlockKind::Plane:
-            lower_plane(r, o);
-            break;
-        default:
-            lower_mesh(r, ctx, o);
-            break;
     }
     std::optional<MaterialPtr> material = object_material(r, ctx);
     if (!material) r.failed();

@@ -1,10 +1,11 @@
-// Lowering: blocks (settings, camera, lights, objects, materials, textures) → render::SceneSpec
-// elements, each checked against its property table (generated from the render element tables of
-// render/params.h), and the SceneBuilder that assembles them with a span table, so that errors
+// Lowering: plain functions from checked evaluated blocks (settings, camera, lights, objects,
+// materials, textures; lang/properties.h) to render::SceneSpec elements, with the rules that span
+// several properties, and the SceneBuilder that assembles them with a span table, so that errors
 // found later by render::build_scene map back to the element, the value or the face they concern.
+// Lowering evaluates nothing and knows no interpreter: the interpreter evaluates a block, then
+// hands it here.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -46,14 +47,19 @@ struct Lowered {
 
 using ObjCache = std::map<std::string, std::shared_ptr<const render::MeshData>>;
 
+// The `default_material` binding in scope where a block is written: the material of an object
+// that names none.
+struct DefaultMaterial {
+    const std::optional<Value>* value = nullptr;  // null: none in scope; empty: its definition failed
+    Span defined_at;
+};
+
+// What lowering needs besides the block: where it was written and what is in scope there.
 struct BlockContext {
     const SourceManager& sources;
     Diagnostics& diags;
-    EvalFn eval;
     IncludeChain chain;
-    // The material of an object that names none: nullptr when no `default_material` is in
-    // scope, std::nullopt when one is but cannot be used (already reported).
-    std::function<std::optional<MaterialPtr>(Span keyword)> default_material;
+    DefaultMaterial default_material = {};
     ObjCache* obj_cache = nullptr;
 };
 
@@ -66,13 +72,34 @@ struct LoweredObject {
     std::vector<FieldSpan> fields;
 };
 
-std::optional<Lowered<render::Settings>> lower_settings(const ObjectStmt& stmt, BlockContext& ctx);
-std::optional<Lowered<render::CameraSpec>> lower_camera(const ObjectStmt& stmt, BlockContext& ctx);
-std::optional<Lowered<render::LightSpec>> lower_light(const ObjectStmt& stmt, BlockContext& ctx);
-std::optional<LoweredObject> lower_object(const ObjectStmt& stmt, BlockContext& ctx);
-// ExprKind::Material / Image, Checker, Perlin; null after reporting an error.
-MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx);
-TexturePtr lower_texture(const Expr& expr, BlockContext& ctx);
+// The table a block statement's items are read against; null after reporting an unknown light kind
+// (whose block is then not evaluated).
+const BlockTable* statement_table(const ObjectStmt& stmt, Diagnostics& diags);
+// The table of a `material`, `checker` or `perlin` expression.
+const BlockTable& expression_table(ExprKind kind);
+// The head of a block expression: from its first token to the end of its '{', so that messages
+// underline `material {` rather than the whole block.
+Span head_span(const BlockExpr& expr);
+
+// Each takes the block checked against the table statement_table / expression_table gave; each
+// returns nothing (or null) after reporting an error.
+std::optional<Lowered<render::Settings>> lower_settings(BlockReader& r);
+std::optional<Lowered<render::CameraSpec>> lower_camera(BlockReader& r);
+std::optional<Lowered<render::LightSpec>> lower_light(BlockReader& r);
+std::optional<LoweredObject> lower_object(BlockReader& r, BlockContext& ctx);
+MaterialPtr lower_material(BlockReader& r, BlockContext& ctx);
+
+// A material value's render spec, with the textures it names (its own or its base's) and the
+// value spans of its own block.
+struct LoweredMaterial {
+    render::MaterialSpec spec;
+    TexturePtr texture, bump;  // what spec.texture / spec.bump were made from
+    std::vector<FieldSpan> fields;
+};
+LoweredMaterial lower_material_spec(const MaterialValue& material);
+TexturePtr lower_texture(BlockReader& r, BlockContext& ctx);  // checker, perlin
+// `image "file"`: `path` is the evaluated file name, written at `path_span`.
+TexturePtr lower_image(const Value& path, Span path_span, BlockContext& ctx);
 
 // Mesh geometry from `file` or `vertices`/`faces`/`uvs`/`normals` (lower_mesh.cpp).
 bool lower_mesh(BlockReader& reader, BlockContext& ctx, LoweredObject& object);

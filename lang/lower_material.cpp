@@ -1,6 +1,6 @@
-// Lowering of material and texture values: `material { ... }` (with `base` applied first and the
-// reflection + transmission <= 1 rule), `image "file"` (resolved relative to the file naming it),
-// `checker { ... }` and `perlin { ... }`.
+// Lowering of checked material and texture blocks into values: `material { ... }` (with `base`
+// applied first and the reflection + transmission <= 1 rule), `image "file"` (resolved relative to
+// the file naming it), `checker { ... }` and `perlin { ... }`.
 #include <cmath>
 
 #include "lang/lower.h"
@@ -8,16 +8,6 @@
 namespace wsd::lang {
 
 namespace {
-
-// The head of a block expression: from its first token to the end of its '{' (or the keyword
-// alone), so that messages underline `material {` rather than the whole block.
-Span head_span(const BlockExpr& expr) {
-    Span s = expr.span;
-    if (expr.block && expr.block->open.end > s.begin && expr.block->open.end <= s.end &&
-        expr.block->open.file == s.file)
-        s.end = expr.block->open.end;
-    return s;
-}
 
 std::optional<render::PerlinKind> perlin_kind(std::string_view word) {
     if (word == "noise") return render::PerlinKind::Noise;
@@ -28,49 +18,49 @@ std::optional<render::PerlinKind> perlin_kind(std::string_view word) {
 }
 
 void read_colors(const BlockReader& r, render::TextureSpec& spec) {
-    const std::vector<Value>& colors = r.values("colors");
+    const std::vector<Value> colors = r.values("colors");
     if (colors.size() == 2) {
         spec.color1 = colors[0].vec3();
         spec.color2 = colors[1].vec3();
     }
 }
 
-TexturePtr lower_image(const ImageExpr& expr, BlockContext& ctx) {
-    const Expr& path_expr = *expr.path;
-    std::optional<Value> path = ctx.eval(path_expr);
-    if (!path) return nullptr;
+}  // namespace
+
+TexturePtr lower_image(const Value& path_value, Span path_span, BlockContext& ctx) {
+    const Value* path = &path_value;
     if (!path->is(ValueType::String)) {
-        ctx.diags.error(path_expr.span, std::string("'image' needs a file name (a string), found ") +
-                                            type_name(path->type()));
+        ctx.diags.error(
+            path_span, std::string("'image' needs a file name (a string), found ") + type_name(path->type()));
         return nullptr;
     }
     if (path->string().empty()) {
-        ctx.diags.error(path_expr.span, "'image' file name is empty");
+        ctx.diags.error(path_span, "'image' file name is empty");
         return nullptr;
     }
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Image;
-    t->spec.image_path = resolve_path(ctx.sources, expr.span.file, path->string());
-    t->span = path_expr.span;
+    t->spec.image_path = resolve_path(ctx.sources, path_span.file, path->string());
+    t->span = path_span;
     t->chain = ctx.chain;
     return t;
 }
 
-TexturePtr lower_checker(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("checker"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+namespace {
+
+TexturePtr lower_checker(BlockReader& r, BlockContext& ctx) {
     if (!r.ok()) return nullptr;
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Checker;
     r.apply(t->spec);
     read_colors(r, t->spec);
     t->fields = r.field_spans();
-    t->span = head_span(expr);
+    t->span = r.keyword();
     t->chain = ctx.chain;
     return t;
 }
 
-TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("perlin"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
+TexturePtr lower_perlin(BlockReader& r, BlockContext& ctx) {
     auto t = std::make_shared<TextureValue>();
     t->spec.kind = render::TextureKind::Perlin;
     t->spec.perlin = perlin_kind(r.word("kind", "noise")).value_or(render::PerlinKind::Noise);
@@ -89,41 +79,22 @@ TexturePtr lower_perlin(const BlockExpr& expr, BlockContext& ctx) {
     read_colors(r, t->spec);
     if (!r.ok()) return nullptr;
     t->fields = r.field_spans();
-    t->span = head_span(expr);
+    t->span = r.keyword();
     t->chain = ctx.chain;
     return t;
 }
 
 }  // namespace
 
-TexturePtr lower_texture(const Expr& expr, BlockContext& ctx) {
-    switch (expr.kind) {
-        case ExprKind::Image:
-            return lower_image(expr.as<ImageExpr>(), ctx);
-        case ExprKind::Checker:
-            return lower_checker(expr.as<BlockExpr>(), ctx);
-        case ExprKind::Perlin:
-            return lower_perlin(expr.as<BlockExpr>(), ctx);
-        default:
-            return nullptr;
-    }
+TexturePtr lower_texture(BlockReader& r, BlockContext& ctx) {
+    return r.table().element == render::Element::Perlin ? lower_perlin(r, ctx) : lower_checker(r, ctx);
 }
 
-MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
-    BlockReader r(block_table("material"), *expr.block, head_span(expr), ctx.diags, ctx.eval);
-    auto m = std::make_shared<MaterialValue>();
-    m->span = head_span(expr);
-    m->chain = ctx.chain;
-    // `base` first, wherever it is written: the other properties override the copy.
-    const MaterialValue* base = r.value("base") ? r.value("base")->material().get() : nullptr;
-    if (base) {
-        m->spec = base->spec;
-        m->texture = base->texture;
-        m->bump = base->bump;
-    }
-    render::MaterialSpec& s = m->spec;
+MaterialPtr lower_material(BlockReader& r, BlockContext& ctx) {
+    // `base` first, wherever it is written: the other properties override it.
+    const Value* base = r.value("base");
+    render::MaterialSpec s = base ? lower_material_spec(*base->material()).spec : render::MaterialSpec{};
     r.apply(s);
-    if (const Value* tex = r.value("texture")) m->texture = tex->texture();
     if (const Value* bump = r.value("bump")) {
         if (bump->texture()->spec.kind != render::TextureKind::Perlin) {
             const char* kind =
@@ -131,7 +102,6 @@ MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
             r.fail(r.value_span("bump"),
                    std::string("'bump' must be a perlin texture, found ") + kind + " texture");
         }
-        m->bump = bump->texture();
     }
     std::optional<std::string> sum_problem;
     if (r.ok()) sum_problem = render::reflection_transmission_problem(s.reflection, s.transmission);
@@ -151,16 +121,38 @@ MaterialPtr lower_material(const BlockExpr& expr, BlockContext& ctx) {
         r.failed();
     }
     if (!r.ok()) return nullptr;
-    m->fields = r.field_spans();
-    if (m->texture)
-        s.texture = m->texture->spec;
-    else
-        s.texture.reset();
-    if (m->bump)
-        s.bump = m->bump->spec;
-    else
-        s.bump.reset();
+    auto m = std::make_shared<MaterialValue>();
+    m->block = std::move(r).take_block();
+    m->chain = ctx.chain;
     return m;
+}
+
+LoweredMaterial lower_material_spec(const MaterialValue& material) {
+    // The `base` chain, applied from its root: each block's properties override its base's.
+    std::vector<const MaterialValue*> chain;
+    for (const MaterialValue* m = &material; m;) {
+        chain.push_back(m);
+        const Value* base = m->property("base");
+        m = base ? base->material().get() : nullptr;
+    }
+    LoweredMaterial out;
+    const BlockTable& table = block_table("material");
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        apply_block(table, (*it)->block, &out.spec);
+        if (const Value* t = (*it)->property("texture")) out.texture = t->texture();
+        if (const Value* b = (*it)->property("bump")) out.bump = b->texture();
+    }
+    if (out.texture) out.spec.texture = out.texture->spec;
+    if (out.bump) out.spec.bump = out.bump->spec;
+    out.fields = block_field_spans(table, material.block);
+    return out;
+}
+
+const Value* MaterialValue::property(std::string_view name) const {
+    for (const EvaluatedItem& item : block.items)
+        if (item.name == name && item.count && block.values_of(item)[0].value)
+            return &*block.values_of(item)[0].value;
+    return nullptr;
 }
 
 }  // namespace wsd::lang

@@ -1,19 +1,19 @@
-// Property tables and the generic block reader: every block (settings, camera, lights, objects,
+// Property tables and the block reader: every evaluated block (settings, camera, lights, objects,
 // material, checker, perlin) is checked against its table here — unknown names with a "did you
 // mean", repeats with a note at the first, value counts, types and ranges — and its transforms
-// (scale, rotate, translate) are collected in the order written.
+// (scale, rotate, translate) are collected in the order written. The reader only reads values
+// already evaluated (lang/evaluated.h); it never evaluates, so it knows no interpreter.
 #pragma once
 
 #include <cassert>
-#include <functional>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "lang/ast.h"
 #include "lang/diagnostics.h"
+#include "lang/evaluated.h"
 #include "lang/value.h"
 #include "render/params.h"
 
@@ -49,19 +49,38 @@ struct Transform {
     Span span;
 };
 
-using EvalFn = std::function<std::optional<Value>(const Expr&)>;
+// What the evaluator does with an item's values once the table has seen its name and count.
+enum class ItemRead { Skip, Evaluate, Words };
 
-// Reads one block against its table at construction, reporting every problem it finds. A value
-// that failed to evaluate (already reported) marks the block failed without another message.
+// Checks one evaluated block against its table, reporting every problem it finds, and answers
+// lowering's questions about it. A value that failed to evaluate (already reported) marks the
+// block failed without another message.
+//
+// The check runs item by item — `admit` (name, repeat, count), then `accept` for each value
+// (word, type, range) — so that an evaluator can feed it as it evaluates and every diagnostic,
+// the checker's and the evaluator's, comes in source order; `admit` also says whether the values
+// are evaluated at all (an unknown, repeated or miscounted item's are not; a word is read, not
+// evaluated).
 class BlockReader {
 public:
-    BlockReader(const BlockTable& table, const Block& block, Span keyword, Diagnostics& diags,
-                const EvalFn& eval);
+    // Checks a whole block at once (a block built without an evaluator).
+    BlockReader(const BlockTable& table, const EvaluatedBlock& block, Diagnostics& diags);
+    // An empty block, fed with admit/accept/end_item (`items`, `values`: how many will be admitted).
+    BlockReader(const BlockTable& table, Span keyword, Span open, Span close, Diagnostics& diags,
+                size_t items = 0, size_t values = 0);
+
+    // An item and the spans of its values (not yet evaluated): checks its name and count.
+    ItemRead admit(std::string_view name, Span name_span, std::span<const Span> value_spans);
+    // The next value of the item last admitted: checks and keeps it.
+    void accept(EvaluatedValue value);
+    void end_item();
+    const EvaluatedBlock& block() const { return block_; }
+    EvaluatedBlock take_block() && { return std::move(block_); }
 
     bool ok() const { return ok_; }
-    bool has(std::string_view name) const { return slot(name) && slot(name)->item; }
+    bool has(std::string_view name) const { return slot(name) && slot(name)->item >= 0; }
     // Validated values of a present, valid property (empty otherwise).
-    const std::vector<Value>& values(std::string_view name) const;
+    std::vector<Value> values(std::string_view name) const;
     const Value* value(std::string_view name) const;             // the first value, or null
     Span value_span(std::string_view name, size_t i = 0) const;  // the value expression's span
     Span name_span(std::string_view name) const;
@@ -89,33 +108,46 @@ public:
     void fail(Span span, std::string message);  // report an error and mark the block failed
     void failed() { ok_ = false; }              // a problem already reported elsewhere
     const std::vector<Transform>& transforms() const { return transforms_; }
-    Span keyword() const { return keyword_; }
+    Span keyword() const { return block_.keyword; }
     const BlockTable& table() const { return table_; }
     Diagnostics& diags() { return diags_; }
 
 private:
     struct Slot {
-        const Item* item = nullptr;
+        int item = -1;  // index in block_.items of the first item of this name
         bool valid = false;
-        std::vector<Value> values;
     };
     const Slot* slot(std::string_view name) const;
+    const EvaluatedItem* item_of(const Slot* s) const {
+        return s && s->item >= 0 ? &block_.items[static_cast<size_t>(s->item)] : nullptr;
+    }
     void apply_fields(void* spec) const;
-    void read_item(const Item& item);
-    void read_transform(const Item& item);
-    bool check_count(const Property& p, const Item& item);
-    std::optional<Value> read_value(const Property& p, const Expr& expr);
-    bool check_value(const Property& p, const Value& v, const Expr& expr);
+    void report_unknown(const EvaluatedItem& item);
+    void read_transform(const EvaluatedItem& item);
+    bool check_count(const Property& p, const EvaluatedItem& item);
+    std::span<const EvaluatedValue> values_of(const EvaluatedItem& item) const {
+        return block_.values_of(item);
+    }
+    bool check_word(const Property& p, const EvaluatedValue& v);
+    bool check_value(const Property& p, const Value& v, Span at);
 
     const BlockTable& table_;
-    Span keyword_;
+    EvaluatedBlock block_;
     Diagnostics& diags_;
-    const EvalFn& eval_;
     std::vector<Slot> slots_;  // parallel to table_.properties
     std::vector<Transform> transforms_;
     std::vector<std::string> suggested_;  // names offered as "did you mean"
+    const Property* current_ = nullptr;   // the property of the item being accepted
+    size_t next_value_ = 0;               // its next value to accept
+    bool current_valid_ = false, current_transform_ = false;
     bool ok_ = true;
 };
+
+// For a block whose every item is a checked property of `table` (a block a reader found ok):
+// writes the properties that set a render field with access into `spec`, the spec struct of the
+// table's element, and lists the value span of each that sets a render field.
+void apply_block(const BlockTable& table, const EvaluatedBlock& block, void* spec);
+std::vector<FieldSpan> block_field_spans(const BlockTable& table, const EvaluatedBlock& block);
 
 // Whether property `a` is written after property `b` in the block (by source position).
 inline bool written_after(const BlockReader& r, std::string_view a, std::string_view b) {

@@ -1,5 +1,6 @@
-// The SceneBuilder: assembles lowered elements into a render::SceneSpec as statements run, with
-// one span record per tag (and the value spans of its fields), and maps render::build_scene's
+// The SceneBuilder: assembles lowered elements into a render::SceneSpec as statements run (a
+// material value is lowered to its spec when an object first uses it, once per value), with one
+// span record per tag (and the value spans of its fields), and maps render::build_scene's
 // SpecErrors back to those spans by the element, field and face they name.
 #include "lang/lower.h"
 
@@ -53,10 +54,12 @@ uint32_t SceneBuilder::texture_tag(const TexturePtr& texture) {
 uint32_t SceneBuilder::material_index(const MaterialPtr& material) {
     auto it = material_ids_.find(material.get());
     if (it != material_ids_.end()) return it->second;
-    render::MaterialSpec spec = material->spec;
-    spec.tag = record(plain(material->span, material->chain), material->fields);
-    if (spec.texture && material->texture) spec.texture->tag = texture_tag(material->texture);
-    if (spec.bump && material->bump) spec.bump->tag = texture_tag(material->bump);
+    // Lowered once per material value, however many objects use it.
+    LoweredMaterial lowered = lower_material_spec(*material);
+    render::MaterialSpec& spec = lowered.spec;
+    spec.tag = record(plain(material->block.keyword, material->chain), lowered.fields);
+    if (spec.texture) spec.texture->tag = texture_tag(lowered.texture);
+    if (spec.bump) spec.bump->tag = texture_tag(lowered.bump);
     uint32_t index = static_cast<uint32_t>(scene_.spec.materials.size());
     scene_.spec.materials.push_back(std::move(spec));
     materials_.push_back(material);

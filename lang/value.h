@@ -1,6 +1,7 @@
 // Runtime values of the .wsd language: number, bool, string, vector2, vector3, list, material and
-// texture. Every value keeps the span it came from. Lists are immutable and shared; a list of
-// numeric vector literals shares the parser's packed storage instead of one Value per element.
+// texture (a material is its evaluated block: lang/evaluated.h). Every value keeps the span it came from.
+// Lists are immutable and shared; a list of numeric vector literals shares the parser's packed storage
+// instead of one Value per element.
 #pragma once
 
 #include <cstdint>
@@ -103,14 +104,6 @@ struct TextureValue {
     Span span;                      // image: the path string; checker/perlin: the keyword
     IncludeChain chain;             // where it was written
     std::vector<FieldSpan> fields;  // the values written in its block
-};
-
-struct MaterialValue {
-    render::MaterialSpec spec;  // spec.texture / spec.bump mirror `texture` / `bump`
-    TexturePtr texture, bump;
-    Span span;  // the `material {` that made it
-    IncludeChain chain;
-    std::vector<FieldSpan> fields;  // the values written in its block (not those from `base`)
 };
 
 // Text for messages: numbers in shortest round-trip form (integers without exponent), vectors
