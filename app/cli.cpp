@@ -125,6 +125,53 @@ struct RenderOptionRefs {
     }
 };
 
+CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& refs) {
+    CLI::App* cmd = app.add_subcommand("render", "render an image");
+    cmd->add_option("SCENE", args.scene, "scene file; - = stdin")->required();
+    cmd->add_option("-o,--output", args.output,
+                    "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
+    refs.add(*cmd);
+    add_scene_input(*cmd, args.input);
+    cmd->add_option("--threads", args.threads, "render threads; 0 = all cores")->check(integer_in(0, 4096));
+    cmd->add_flag("--no-bvh", args.no_bvh, "test every object (no bounding volume hierarchy)");
+    cmd->add_flag("--general", args.general,
+                  "use the general integrator with every effect enabled (same image, slower; for checking)");
+    cmd->add_flag("--stats", args.stats, "print render statistics at the end");
+    cmd->add_option("--stats-json", args.stats_json, "write render statistics as JSON");
+    cmd->add_flag("-q,--quiet", args.quiet, "no progress output");
+    cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
+    cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
+    cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    return cmd;
+}
+
+CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
+    CLI::App* cmd = app.add_subcommand("bench", "measure error against time for each setting");
+    cmd->add_option("SCENE", args.scene, "scene file")->required();
+    add_scene_input(*cmd, args.input);
+    cmd->add_option("-o,--output", args.dir, "directory for bench.csv, bench.md, bench.svg (default .)");
+    cmd->add_option("--repeat", args.repeat,
+                    "runs per setting; the median is reported (default 3, or 1 with --quick)")
+        ->check(integer_in(1, 1000));
+    cmd->add_flag("--quick", args.quick,
+                  "a small sweep at a small size (at most 32 pixels a side; for tests)");
+    cmd->add_option("--reference-supersamples", args.reference_supersamples,
+                    "supersamples of the reference image (default 256; the reference uses another seed)")
+        ->check(integer_in(1, max_supersamples));
+    cmd->add_option("--reference-light-samples", args.reference_light_samples,
+                    "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
+        ->check(integer_in(1, max_light_grid_side));
+    cmd->add_option("--reference-depth", args.reference_depth,
+                    "max depth of the reference (default max(scene, 10))")
+        ->check(integer_in(0, max_depth_limit));
+    cmd->add_option("--threads", args.threads, "render threads; 0 = all cores")->check(integer_in(0, 4096));
+    cmd->add_option("--width", args.width, "image width (default the scene's)")
+        ->check(integer_in(1, max_image_side));
+    cmd->add_option("--height", args.height, "image height")->check(integer_in(1, max_image_side));
+    cmd->add_flag("-q,--quiet", args.quiet, "no progress output");
+    return cmd;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -153,25 +200,7 @@ int run_cli(int argc, char** argv) {
 
     RenderArgs render_args;
     RenderOptionRefs render_refs;
-    CLI::App* render = app.add_subcommand("render", "render an image");
-    render->add_option("SCENE", render_args.scene, "scene file; - = stdin")->required();
-    render->add_option("-o,--output", render_args.output,
-                       "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
-    render_refs.add(*render);
-    add_scene_input(*render, render_args.input);
-    render->add_option("--threads", render_args.threads, "render threads; 0 = all cores")
-        ->check(integer_in(0, 4096));
-    render->add_flag("--no-bvh", render_args.no_bvh, "test every object (no bounding volume hierarchy)");
-    render->add_flag(
-        "--general", render_args.general,
-        "use the general integrator with every effect enabled (same image, slower; for checking)");
-    render->add_flag("--stats", render_args.stats, "print render statistics at the end");
-    render->add_option("--stats-json", render_args.stats_json, "write render statistics as JSON");
-    render->add_flag("-q,--quiet", render_args.quiet, "no progress output");
-    render->add_flag("--adaptive-lights", render_args.adaptive_lights,
-                     "adaptive sampling on every area light");
-    render->add_option("--tile", render_args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
-    render->add_option("--region", render_args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    CLI::App* render = add_render_command(app, render_args, render_refs);
 
     DiffArgs diff_args;
     CLI::App* diff = app.add_subcommand("diff", "compare two images (RMSE, PSNR, max error, SSIM)");
@@ -185,35 +214,7 @@ int run_cli(int argc, char** argv) {
     merge->add_option("-o,--output", merge_args.output, "output image")->required();
 
     BenchArgs bench_args;
-    CLI::App* bench = app.add_subcommand("bench", "measure error against time for each setting");
-    bench->add_option("SCENE", bench_args.scene, "scene file")->required();
-    add_scene_input(*bench, bench_args.input);
-    bench->add_option("-o,--output", bench_args.dir,
-                      "directory for bench.csv, bench.md, bench.svg (default .)");
-    bench
-        ->add_option("--repeat", bench_args.repeat,
-                     "runs per setting; the median is reported (default 3, or 1 with --quick)")
-        ->check(integer_in(1, 1000));
-    bench->add_flag("--quick", bench_args.quick,
-                    "a small sweep at a small size (at most 32 pixels a side; for tests)");
-    bench
-        ->add_option("--reference-supersamples", bench_args.reference_supersamples,
-                     "supersamples of the reference image (default 256; the reference uses another seed)")
-        ->check(integer_in(1, max_supersamples));
-    bench
-        ->add_option("--reference-light-samples", bench_args.reference_light_samples,
-                     "N: area lights use an N×N grid in the reference (default 16, or 8 with --quick)")
-        ->check(integer_in(1, max_light_grid_side));
-    bench
-        ->add_option("--reference-depth", bench_args.reference_depth,
-                     "max depth of the reference (default max(scene, 10))")
-        ->check(integer_in(0, max_depth_limit));
-    bench->add_option("--threads", bench_args.threads, "render threads; 0 = all cores")
-        ->check(integer_in(0, 4096));
-    bench->add_option("--width", bench_args.width, "image width (default the scene's)")
-        ->check(integer_in(1, max_image_side));
-    bench->add_option("--height", bench_args.height, "image height")->check(integer_in(1, max_image_side));
-    bench->add_flag("-q,--quiet", bench_args.quiet, "no progress output");
+    CLI::App* bench = add_bench_command(app, bench_args);
 
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");

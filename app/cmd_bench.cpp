@@ -148,6 +148,56 @@ int prepare_directory(const std::string& dir, std::string& error) {
     return exit_code::ok;
 }
 
+// The scene's own settings (size, samples, depth, seed, area lights), read without building it.
+int read_scene_facts(const BenchArgs& args, const std::string& text, const lang::ParamTable& params,
+                     SceneFacts& facts) {
+    lang::LoadOptions options;
+    options.build = false;
+    options.params = &params;
+    lang::SourceManager sources;
+    std::optional<lang::LoadedScene> loaded;
+    if (const int s = load_scene_text(args.scene, text, options, sources, loaded, !args.input.no_warnings);
+        s != exit_code::ok)
+        return s;
+    warn_unread_defines(params, args.input);
+    const render::Settings& st = loaded->spec.settings;
+    facts.width = st.width;
+    facts.height = st.height;
+    facts.supersamples = st.supersamples;
+    facts.max_depth = st.max_depth;
+    facts.seed = st.seed;
+    for (const render::LightSpec& l : loaded->spec.lights)
+        if (l.kind == render::LightKind::Area && !facts.area_lights) {
+            facts.area_lights = true;
+            facts.light_grid = std::to_string(l.samples_u) + "x" + std::to_string(l.samples_v);
+        }
+    return exit_code::ok;
+}
+
+// The reference image's settings: far more samples than the sweep, another seed, nothing adaptive.
+SceneOverrides reference_overrides(const BenchArgs& args, const SceneFacts& facts, const SceneOverrides& base,
+                                   BenchInfo& info) {
+    SceneOverrides reference = base;
+    // 256 = a 16×16 grid, four times the largest supersampling in the sweep, and another seed:
+    // with the sweep's own seed and sample count, the 64-sample row would share the reference's
+    // jitter and its error would read as far smaller than it is.
+    reference.supersamples = args.reference_supersamples ? args.reference_supersamples : 256;
+    reference.seed = facts.seed ^ 0x9E3779B9u;
+    const int ref_light = args.reference_light_samples ? args.reference_light_samples : (args.quick ? 8 : 16);
+    if (facts.area_lights) reference.light_samples = ref_light;
+    reference.max_depth = args.reference_depth >= 0 ? args.reference_depth : std::max(facts.max_depth, 10);
+    reference.adaptive_supersampling = false;
+    reference.adaptive_lights = false;
+    reference.bailout = 0.0;
+    info.reference_settings =
+        "supersamples " + std::to_string(*reference.supersamples) +
+        (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" + std::to_string(ref_light)
+                           : std::string()) +
+        ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling, bailout 0, seed " +
+        std::to_string(*reference.seed);
+    return reference;
+}
+
 }  // namespace
 
 int run_bench(const BenchArgs& args) {
@@ -158,31 +208,8 @@ int run_bench(const BenchArgs& args) {
     lang::ParamTable params;
     if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
 
-    // The scene's own settings, without building anything.
     SceneFacts facts;
-    {
-        lang::LoadOptions options;
-        options.build = false;
-        options.params = &params;
-        lang::SourceManager sources;
-        std::optional<lang::LoadedScene> loaded;
-        if (const int s =
-                load_scene_text(args.scene, text, options, sources, loaded, !args.input.no_warnings);
-            s != exit_code::ok)
-            return s;
-        warn_unread_defines(params, args.input);
-        const render::Settings& st = loaded->spec.settings;
-        facts.width = st.width;
-        facts.height = st.height;
-        facts.supersamples = st.supersamples;
-        facts.max_depth = st.max_depth;
-        facts.seed = st.seed;
-        for (const render::LightSpec& l : loaded->spec.lights)
-            if (l.kind == render::LightKind::Area && !facts.area_lights) {
-                facts.area_lights = true;
-                facts.light_grid = std::to_string(l.samples_u) + "x" + std::to_string(l.samples_v);
-            }
-    }
+    if (const int st = read_scene_facts(args, text, params, facts); st != exit_code::ok) return st;
     SceneOverrides base;
     int width = args.width ? args.width : facts.width, height = args.height ? args.height : facts.height;
     if (args.quick && !args.width && !args.height) {
@@ -209,24 +236,7 @@ int run_bench(const BenchArgs& args) {
                           (facts.area_lights ? ", light samples " + facts.light_grid : std::string()) +
                           ", max depth " + std::to_string(facts.max_depth);
 
-    SceneOverrides reference = base;
-    // 256 = a 16×16 grid, four times the largest supersampling in the sweep, and another seed:
-    // with the sweep's own seed and sample count, the 64-sample row would share the reference's
-    // jitter and its error would read as far smaller than it is.
-    reference.supersamples = args.reference_supersamples ? args.reference_supersamples : 256;
-    reference.seed = facts.seed ^ 0x9E3779B9u;
-    const int ref_light = args.reference_light_samples ? args.reference_light_samples : (args.quick ? 8 : 16);
-    if (facts.area_lights) reference.light_samples = ref_light;
-    reference.max_depth = args.reference_depth >= 0 ? args.reference_depth : std::max(facts.max_depth, 10);
-    reference.adaptive_supersampling = false;
-    reference.adaptive_lights = false;
-    reference.bailout = 0.0;
-    info.reference_settings =
-        "supersamples " + std::to_string(*reference.supersamples) +
-        (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" + std::to_string(ref_light)
-                           : std::string()) +
-        ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling, bailout 0, seed " +
-        std::to_string(*reference.seed);
+    const SceneOverrides reference = reference_overrides(args, facts, base, info);
 
     CancelOnSignal signals;
     const bool verbose = !args.quiet;
