@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -130,6 +131,26 @@ struct RayBoxTest {
 #endif
     }
 };
+
+// Whether the segment a + t·d, t in [0, 1], meets the closed box [lo, hi]: the slab test in double
+// precision, for the handful of boxes of a conservative cull (Scene::may_cross_transmissive),
+// where setting up RayBoxTest's float constants for every segment costs more than the test.
+inline bool segment_meets_box(const Vec3& lo, const Vec3& hi, const Vec3& a, const Vec3& d) {
+    double t0 = 0, t1 = 1;
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] == 0) {
+            if (!(a[i] >= lo[i] && a[i] <= hi[i])) return false;
+            continue;
+        }
+        const double inv = 1.0 / d[i];
+        double n = (lo[i] - a[i]) * inv, f = (hi[i] - a[i]) * inv;
+        if (n > f) std::swap(n, f);
+        t0 = n > t0 ? n : t0;
+        t1 = f < t1 ? f : t1;
+        if (!(t0 <= t1)) return false;
+    }
+    return true;
+}
 
 #if defined(__SSE2__)
 // RayBoxTest::init's o_near, o_far and inv for four rays at once (lane k: ray k), bit for bit,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "render/aabb.h"
 #include "render/math.h"
 #include "render/params.h"
 
@@ -108,23 +109,8 @@ void add_box_corners(const Mat4& m, const Vec3& lo, const Vec3& hi, Vec3& out_lo
 bool Scene::may_cross_transmissive(const Vec3& a, const Vec3& b) const {
     if (transmissive_unbounded_) return true;
     const Vec3 d = b - a;
-    for (const Bounds& box : transmissive_bounds_) {
-        double t0 = 0, t1 = 1;
-        bool hit = true;
-        for (int i = 0; i < 3 && hit; ++i) {
-            if (d[i] == 0) {
-                hit = a[i] >= box.lo[i] && a[i] <= box.hi[i];
-                continue;
-            }
-            const double inv = 1.0 / d[i];
-            double n = (box.lo[i] - a[i]) * inv, f = (box.hi[i] - a[i]) * inv;
-            if (n > f) std::swap(n, f);
-            t0 = n > t0 ? n : t0;
-            t1 = f < t1 ? f : t1;
-            hit = t0 <= t1;
-        }
-        if (hit) return true;
-    }
+    for (const Bounds& box : transmissive_bounds_)
+        if (segment_meets_box(box.lo, box.hi, a, d)) return true;
     return false;
 }
 
