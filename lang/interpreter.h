@@ -16,6 +16,7 @@
 #include "lang/diagnostics.h"
 #include "lang/lower.h"
 #include "lang/value.h"
+#include "render/limits.h"
 
 namespace wsd::lang {
 
@@ -23,7 +24,7 @@ class ParamTable;
 
 struct Limits {
     uint64_t loop_iterations = 100'000'000;  // in total
-    size_t primitives = size_t(1) << 24;
+    size_t primitives = render::kMaxPrimitives;
     int include_depth = 64;
     // The parser limits nesting to 256 levels a file (a chain of one operator level is one
     // node); this guards the evaluator's own recursion over the whole scene, where includes

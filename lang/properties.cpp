@@ -321,6 +321,8 @@ void BlockReader::read_transform(const EvaluatedItem& item) {
         t.v = v.is(ValueType::Number) ? glm::dvec3(v.number()) : v.vec3();
         for (int i = 0; i < 3; ++i) {
             double m = std::fabs(t.v[i]);
+            static_assert(render::kMinScale == 1e-12 && render::kMaxScale == 1e12,
+                          "the message below writes the bounds as 1e-12 and 1e12");
             if (m < render::kMinScale || m > render::kMaxScale) {
                 fail(ev.span, "'scale' factors must have a magnitude in [1e-12, 1e12], found " + describe(v));
                 return;
