@@ -89,19 +89,23 @@ enum class ExprKind : uint8_t {
     Bad,         // Expr alone: a placeholder after a syntax error (the program is never run)
 };
 
-// The common head of every expression node. `as<T>()` is the checked-by-construction downcast:
-// the kind tag says which node type this is.
-struct Expr {
-    ExprKind kind;
-    Span span;
+// `as<T>()`, the downcast of a node head to its node type: the head's kind tag says which it is.
+template <class Head>
+struct Downcast {
     template <class T>
     const T& as() const {
-        return static_cast<const T&>(*this);
+        return static_cast<const T&>(static_cast<const Head&>(*this));
     }
     template <class T>
     T& as() {
-        return static_cast<T&>(*this);
+        return static_cast<T&>(static_cast<Head&>(*this));
     }
+};
+
+// The common head of every expression node.
+struct Expr : Downcast<Expr> {
+    ExprKind kind;
+    Span span;
 };
 
 using ExprList = std::span<Expr* const>;
@@ -190,18 +194,10 @@ enum class StmtKind : uint8_t { Let, For, If, Include, Object, Bad };
 enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh };
 
 // The common head of every statement node; `keyword` is its first token.
-struct Stmt {
+struct Stmt : Downcast<Stmt> {
     StmtKind kind;
     Span span;
     Span keyword;
-    template <class T>
-    const T& as() const {
-        return static_cast<const T&>(*this);
-    }
-    template <class T>
-    T& as() {
-        return static_cast<T&>(*this);
-    }
 };
 
 using StmtList = std::span<Stmt* const>;
