@@ -23,6 +23,18 @@ const char* kind_name(render::ShapeKind kind) {
             return "plane";
         case render::ShapeKind::Mesh:
             return "mesh";
+        case render::ShapeKind::Cylinder:
+            return "cylinder";
+        case render::ShapeKind::Cone:
+            return "cone";
+        case render::ShapeKind::Torus:
+            return "torus";
+        case render::ShapeKind::Disc:
+            return "disc";
+        case render::ShapeKind::Csg:
+            return "csg";
+        case render::ShapeKind::Instance:
+            return "object";
     }
     return "object";
 }

@@ -29,9 +29,8 @@ template <int kFilter>
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
-        double t, b1, b2;
-        uint32_t prim;
-        if (test_entry(g, r, e, best.limit, c, t, prim, b1, b2)) best.offer(t, prim, e & kSlotMask, b1, b2);
+        HitRecord h;
+        if (test_entry(g, r, e, best.limit, c, h)) best.offer(h, e & kSlotMask);
     }
 }
 
@@ -42,9 +41,8 @@ template <int kFilter>
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
-        double t, b1, b2;
-        uint32_t prim;
-        if (test_entry(g, r, e, tmax, c, t, prim, b1, b2)) return true;
+        HitRecord h;
+        if (test_entry(g, r, e, tmax, c, h)) return true;
     }
     return false;
 }

@@ -26,6 +26,10 @@ struct HitRecord {
     uint32_t prim = 0;      // geometry-global primitive index
     uint32_t slot = 0;      // internal: where the primitive is stored (set by intersect)
     double b1 = 0, b2 = 0;  // barycentrics (triangles), or shape-specific parameters
+    // Primitives made of others keep the inner hit here (render/other_prims.h): a CSG the member
+    // hit and that member's own slot; an instance the hit inside its prototype's geometry.
+    uint32_t member = 0, member_slot = 0;
+    uint32_t inner_prim = 0, inner_slot = 0;
 };
 
 struct SurfaceHit {

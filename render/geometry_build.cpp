@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "render/geometry_impl.h"
+#include "render/other_prims.h"
 
 namespace wsd::render {
 
@@ -53,6 +54,7 @@ struct Builder {
     void triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     bool world_vertex(const Transform& x, const Vec3& p, Vec3f& out);
     bool degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const;
 };
@@ -279,6 +281,33 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     if (!m.normals.empty() || !m.uvs.empty()) info.mesh = s.mesh;
 }
 
+// Cylinders, cones, tori, discs, CSG solids and instances: built by their own modules
+// (render/other_prims.h), one PrimKind::Other entry each.
+void Builder::other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+    const std::function<void(std::string)> report = [this](std::string m) { error(std::move(m)); };
+    const OtherBuild ob{g, spec, report, next_prim, info.xform};
+    std::optional<Bounds3f> b;
+    uint32_t index = 0;
+    switch (kind) {
+        case OtherKind::Quadric:
+            index = static_cast<uint32_t>(g.quadrics.size());
+            b = build_quadric(ob, s, x);
+            break;
+        case OtherKind::Csg:
+            index = static_cast<uint32_t>(g.csgs.size());
+            b = build_csg(ob, s, x);
+            break;
+        case OtherKind::Instance:
+            index = static_cast<uint32_t>(g.instances.size());
+            b = build_instance(ob, s, x);
+            break;
+    }
+    if (!b || shape_errors > 0) return;
+    info.extra = static_cast<uint32_t>(g.others.size());
+    add_bounded(PrimKind::Other, static_cast<uint32_t>(g.others.size()), *b, trans);
+    g.others.push_back(OtherPrim{kind, index});
+}
+
 }  // namespace
 
 std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
@@ -344,6 +373,18 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
             case ShapeKind::Mesh:
                 b.mesh(s, x, info, trans);
                 break;
+            case ShapeKind::Cylinder:
+            case ShapeKind::Cone:
+            case ShapeKind::Torus:
+            case ShapeKind::Disc:
+                b.other(OtherKind::Quadric, s, x, info, trans);
+                break;
+            case ShapeKind::Csg:
+                b.other(OtherKind::Csg, s, x, info, trans);
+                break;
+            case ShapeKind::Instance:
+                b.other(OtherKind::Instance, s, x, info, trans);
+                break;
         }
         if (b.shape_errors > 0) continue;
         if (b.next_prim > kMaxPrimitives && !limit_reported) {
@@ -388,6 +429,9 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
                 case PrimKind::Box:
                     ns = static_cast<uint32_t>(boxes.size());
                     boxes.push_back(g.boxes[slot]);
+                    break;
+                case PrimKind::Other:
+                    ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
                     break;
             }
             g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);

@@ -7,15 +7,19 @@
 #include <vector>
 
 #include "render/bvh.h"
+#include "render/csg_prims.h"
 #include "render/geometry.h"
+#include "render/instance_prims.h"
 #include "render/limits.h"
+#include "render/quadric_prims.h"
 #include "render/shapes.h"
 #include "render/transform.h"
 
 namespace wsd::render {
 
 // Entries of Impl::order: bit 31 transmissive, bits 29–30 the kind, bits 0–28 the slot.
-enum class PrimKind : uint32_t { Triangle = 0, Sphere = 1, Box = 2 };
+// Other: every primitive beyond the three that traversal tests inline (render/other_prims.h).
+enum class PrimKind : uint32_t { Triangle = 0, Sphere = 1, Box = 2, Other = 3 };
 inline constexpr uint32_t kTransmissiveBit = 1u << 31;
 inline constexpr uint32_t kKindShift = 29;
 inline constexpr uint32_t kSlotMask = (1u << 29) - 1;
@@ -23,6 +27,13 @@ inline constexpr uint32_t kSlotMask = (1u << 29) - 1;
 inline uint32_t encode_entry(PrimKind kind, uint32_t slot, bool transmissive) {
     return (transmissive ? kTransmissiveBit : 0u) | (static_cast<uint32_t>(kind) << kKindShift) | slot;
 }
+
+// A PrimKind::Other entry's record (render/other_prims.h).
+enum class OtherKind : uint8_t { Quadric, Csg, Instance };
+struct OtherPrim {
+    OtherKind kind = OtherKind::Quadric;
+    uint32_t index = 0;  // into Impl::quadrics, Impl::csgs or Impl::instances
+};
 
 struct ShapeInfo {
     ShapeKind kind = ShapeKind::Sphere;
@@ -56,6 +67,11 @@ struct Geometry::Impl {
     std::vector<uint32_t> shape_first;  // shapes[i].first_prim, for lookups by canonical id
     std::vector<TriExtra> tri_extra;
     std::vector<PlaneExtra> plane_extra;
+    std::vector<OtherPrim> others;                       // PrimKind::Other entries' slots
+    std::vector<QuadricPrim> quadrics;                   // cylinders, cones, tori, discs
+    std::vector<CsgPrim> csgs;                           // CSG solids
+    std::vector<InstancePrim> instances;                 // instances of prototypes
+    std::vector<std::unique_ptr<Prototype>> prototypes;  // SceneSpec::prototypes, built when used
     std::vector<Bvh4Node> nodes;  // the BVH in its 4-wide traversal form; empty without BVH
     std::vector<uint32_t> order;  // encoded entries; leaf ranges (BVH) or canonical order
     bool use_bvh = true;

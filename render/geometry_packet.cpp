@@ -144,9 +144,8 @@ struct PacketClosestHit {
             } else {
                 for (uint32_t l = lanes; l != 0; l &= l - 1) {
                     const int k = std::countr_zero(l);
-                    uint32_t prim;
-                    if (test_entry(g, *p.pre[k], entry, best[k].limit, c, t, prim, b1, b2))
-                        best[k].offer(t, prim, slot, b1, b2);
+                    HitRecord h;
+                    if (test_entry(g, *p.pre[k], entry, best[k].limit, c, h)) best[k].offer(h, slot);
                 }
             }
         }

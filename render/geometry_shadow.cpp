@@ -35,8 +35,16 @@ private:
     alignas(RayPre) unsigned char storage_[sizeof(RayPre)];
 };
 
-// Entries of ShaftCandidates with this kind are planes (the BVH's entries use kinds 0–2).
-constexpr uint32_t kPlaneKind = 3;
+// Entries of ShaftCandidates that are planes: kind Other with this bit in the slot (the BVH's
+// slots stay below kMaxPrimitives), the plane's index below it.
+constexpr uint32_t kPlaneSlotBit = 1u << 28;
+static_assert(kMaxPrimitives < kPlaneSlotBit);
+uint32_t plane_entry(size_t i) {
+    return encode_entry(PrimKind::Other, kPlaneSlotBit | static_cast<uint32_t>(i), false);
+}
+bool is_plane(uint32_t e) {
+    return ((e >> kKindShift) & 3u) == uint32_t(PrimKind::Other) && (e & kPlaneSlotBit) != 0;
+}
 
 // The origin's side of the plane with normal n, when the shading point lies on it and the
 // shadow rays start on the side of `self` (ng_side·ng); 0 when n is not clearly ±ng.
@@ -162,12 +170,12 @@ bool ShaftCandidates::gather(const Geometry& geom, const Shaft& shaft, const Sha
     for (size_t i = 0; i < g.planes.size(); ++i) {
         const PlanePrim& p = g.planes[i];
         if (g.has_transmissive && p.transmissive != 0) {
-            add_transmissive(out, (kPlaneKind << kKindShift) | static_cast<uint32_t>(i));
+            add_transmissive(out, plane_entry(i));
             continue;
         }
         const int side = (p.prim == self.prim && self.ng_side != 0) ? self_side(p.n, self) : 0;
         if (shaft.clear_of_plane(p.n, p.c, side)) continue;
-        if (!add(out, (kPlaneKind << kKindShift) | static_cast<uint32_t>(i))) return false;
+        if (!add(out, plane_entry(i))) return false;
     }
     ShaftGather q{g, shaft, self, out};
     uint64_t visits = 0;
@@ -195,11 +203,10 @@ bool ShaftCandidates::occluded(const Geometry& geom, const Ray& ray, double tmax
     for (int k = 0; k < count && !hit; ++k) {
         const uint32_t e = entries[k];
         const uint32_t kind = e >> kKindShift;
-        double t, b1, b2;
-        uint32_t prim;
-        if (kind == kPlaneKind) {
+        double t;
+        if (is_plane(e)) {
             ++c.planes;
-            hit = intersect_plane(ray.o, ray.d, g.planes[e & kSlotMask], tmax, t);
+            hit = intersect_plane(ray.o, ray.d, g.planes[e & (kPlaneSlotBit - 1)], tmax, t);
         } else if ((kind & 3u) == uint32_t(PrimKind::Sphere) &&
                    g.spheres[e & kSlotMask].xform == kNoTransform) {
             const SpherePrim& sp = g.spheres[e & kSlotMask];
@@ -207,7 +214,8 @@ bool ShaftCandidates::occluded(const Geometry& geom, const Ray& ray, double tmax
             hit = intersect_sphere(ray.o, ray.d, a, inv_a, sp.center, sp.radius, Vec3(0), tmax, t);
             c.sph_hits += hit ? 1 : 0;
         } else {
-            hit = test_entry(g, pre.get(), e, tmax, c, t, prim, b1, b2);
+            HitRecord h;
+            hit = test_entry(g, pre.get(), e, tmax, c, h);
         }
     }
     c.flush(stats);
@@ -232,16 +240,15 @@ std::optional<HitRecord> ShaftCandidates::intersect_transmissive(const Geometry&
     LazyRayPre pre(ray);
     for (int k = 0; k < transmissive_count; ++k) {
         const uint32_t e = transmissive_entries[k];
-        double t, b1, b2;
-        uint32_t prim;
-        if ((e >> kKindShift) == kPlaneKind) {
+        double t;
+        if (is_plane(e)) {
             ++c.planes;
-            const PlanePrim& p = g.planes[e & kSlotMask];
+            const PlanePrim& p = g.planes[e & (kPlaneSlotBit - 1)];
             if (intersect_plane(ray.o, ray.d, p, best.limit, t)) best.offer(t, p.prim, e & kSlotMask, 0, 0);
             continue;
         }
-        if (test_entry(g, pre.get(), e, best.limit, c, t, prim, b1, b2))
-            best.offer(t, prim, e & kSlotMask, b1, b2);
+        HitRecord h;
+        if (test_entry(g, pre.get(), e, best.limit, c, h)) best.offer(h, e & kSlotMask);
     }
     c.flush(stats);
     return best.record();

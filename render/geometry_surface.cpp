@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/geometry_impl.h"
+#include "render/other_prims.h"
 
 namespace wsd::render {
 
@@ -133,6 +134,14 @@ SurfaceHit Geometry::surface(const Ray& ray, const HitRecord& hit) const {
             break;
         case ShapeKind::Plane:
             plane_surface(g, info, ray, hit, s);
+            break;
+        case ShapeKind::Cylinder:
+        case ShapeKind::Cone:
+        case ShapeKind::Torus:
+        case ShapeKind::Disc:
+        case ShapeKind::Csg:
+        case ShapeKind::Instance:
+            other_surface(g, info, ray, hit, s);
             break;
     }
     return s;

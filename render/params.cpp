@@ -176,6 +176,10 @@ ElementTable area_light_table() {
     return {Element::AreaLight, "light area", light_fields(true), &kDefaultLight};
 }
 
+ElementTable spot_light_table() {
+    return {Element::SpotLight, "light spot", {}, &kDefaultLight};
+}
+
 ElementTable sphere_table() {
     return {Element::Sphere,
             "sphere",
@@ -248,6 +252,30 @@ ElementTable mesh_table() {
              {"normals", FieldType::List, {}, "one vector3 per vertex: smooth shading", {}, {}, "—"},
              kMaterialField},
             &kDefaultShape};
+}
+
+ElementTable cylinder_table() {
+    return {Element::Cylinder, "cylinder", {kMaterialField}, &kDefaultShape};
+}
+
+ElementTable cone_table() {
+    return {Element::Cone, "cone", {kMaterialField}, &kDefaultShape};
+}
+
+ElementTable torus_table() {
+    return {Element::Torus, "torus", {kMaterialField}, &kDefaultShape};
+}
+
+ElementTable disc_table() {
+    return {Element::Disc, "disc", {kMaterialField}, &kDefaultShape};
+}
+
+ElementTable csg_table() {
+    return {Element::Csg, "csg", {kMaterialField}, &kDefaultShape};
+}
+
+ElementTable instance_table() {
+    return {Element::Instance, "object", {kMaterialField}, &kDefaultShape};
 }
 
 ElementTable material_table() {
@@ -329,6 +357,8 @@ ElementTable make_table(Element e) {
             return point_light_table();
         case Element::AreaLight:
             return area_light_table();
+        case Element::SpotLight:
+            return spot_light_table();
         case Element::Sphere:
             return sphere_table();
         case Element::Box:
@@ -339,6 +369,18 @@ ElementTable make_table(Element e) {
             return plane_table();
         case Element::Mesh:
             return mesh_table();
+        case Element::Cylinder:
+            return cylinder_table();
+        case Element::Cone:
+            return cone_table();
+        case Element::Torus:
+            return torus_table();
+        case Element::Disc:
+            return disc_table();
+        case Element::Csg:
+            return csg_table();
+        case Element::Instance:
+            return instance_table();
         case Element::Material:
             return material_table();
         case Element::Checker:
@@ -386,7 +428,15 @@ const ElementTable& element_table(Element element) {
 }
 
 Element element_of(const LightSpec& light) {
-    return light.kind == LightKind::Area ? Element::AreaLight : Element::PointLight;
+    switch (light.kind) {
+        case LightKind::Point:
+            return Element::PointLight;
+        case LightKind::Area:
+            return Element::AreaLight;
+        case LightKind::Spot:
+            return Element::SpotLight;
+    }
+    return Element::PointLight;
 }
 
 Element element_of(const ShapeSpec& shape) {
@@ -401,6 +451,18 @@ Element element_of(const ShapeSpec& shape) {
             return Element::Plane;
         case ShapeKind::Mesh:
             return Element::Mesh;
+        case ShapeKind::Cylinder:
+            return Element::Cylinder;
+        case ShapeKind::Cone:
+            return Element::Cone;
+        case ShapeKind::Torus:
+            return Element::Torus;
+        case ShapeKind::Disc:
+            return Element::Disc;
+        case ShapeKind::Csg:
+            return Element::Csg;
+        case ShapeKind::Instance:
+            return Element::Instance;
     }
     return Element::Sphere;
 }

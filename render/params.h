@@ -87,11 +87,18 @@ enum class Element : uint8_t {
     Camera,
     PointLight,
     AreaLight,
+    SpotLight,
     Sphere,
     Box,
     Triangle,
     Plane,
     Mesh,
+    Cylinder,
+    Cone,
+    Torus,
+    Disc,
+    Csg,       // union, intersection, difference: one table (their items are the same)
+    Instance,  // object EXPR { ... }
     Material,
     Checker,
     Perlin,
@@ -115,8 +122,8 @@ template <class Spec>
 constexpr bool is_spec_of(Element e) {
     if constexpr (std::is_same_v<Spec, Settings>) return e == Element::Settings;
     if constexpr (std::is_same_v<Spec, CameraSpec>) return e == Element::Camera;
-    if constexpr (std::is_same_v<Spec, LightSpec>) return e == Element::PointLight || e == Element::AreaLight;
-    if constexpr (std::is_same_v<Spec, ShapeSpec>) return e >= Element::Sphere && e <= Element::Mesh;
+    if constexpr (std::is_same_v<Spec, LightSpec>) return e >= Element::PointLight && e <= Element::SpotLight;
+    if constexpr (std::is_same_v<Spec, ShapeSpec>) return e >= Element::Sphere && e <= Element::Instance;
     if constexpr (std::is_same_v<Spec, MaterialSpec>) return e == Element::Material;
     if constexpr (std::is_same_v<Spec, TextureSpec>) return e >= Element::Checker && e <= Element::Image;
     return false;

@@ -34,11 +34,23 @@ struct Best {
     double t = std::numeric_limits<double>::infinity();
     uint32_t prim = 0xffffffffu, slot = 0;
     double b1 = 0, b2 = 0;
+    uint32_t member = 0, member_slot = 0, inner_prim = 0, inner_slot = 0;
     bool hit = false;
 
     void offer(double t_new, uint32_t prim_new, uint32_t slot_new, double b1_new, double b2_new) {
         if (t_new < t || prim_new < prim) {
             t = t_new, prim = prim_new, slot = slot_new, b1 = b1_new, b2 = b2_new;
+            member = member_slot = inner_prim = inner_slot = 0;
+            hit = true;
+            limit = next_float_up(t);
+        }
+    }
+    // A hit from test_entry, at entry slot `slot_new`.
+    void offer(const HitRecord& h, uint32_t slot_new) {
+        if (h.t < t || h.prim < prim) {
+            t = h.t, prim = h.prim, slot = slot_new, b1 = h.b1, b2 = h.b2;
+            member = h.member, member_slot = h.member_slot, inner_prim = h.inner_prim,
+            inner_slot = h.inner_slot;
             hit = true;
             limit = next_float_up(t);
         }
@@ -53,6 +65,10 @@ struct Best {
         h.slot = slot;
         h.b1 = b1;
         h.b2 = b2;
+        h.member = member;
+        h.member_slot = member_slot;
+        h.inner_prim = inner_prim;
+        h.inner_slot = inner_slot;
         return h;
     }
 };
@@ -92,18 +108,21 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     return true;
 }
 
-// One primitive test; fills t, slot-specific parameters and the canonical id on a hit.
+// Defined in render/other_prims.cpp: the one dispatch of PrimKind::Other entries.
+bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Counters& c, HitRecord& h);
+
+// One primitive test; fills h.t, slot-specific parameters, the canonical id and (Other kinds)
+// the inner hit on a hit. h.slot is left to the caller.
 [[gnu::always_inline]] inline bool test_entry(const Impl& g, const RayPre& r, uint32_t e, double limit,
-                                              Counters& c, double& t, uint32_t& prim, double& b1,
-                                              double& b2) {
+                                              Counters& c, HitRecord& h) {
     const uint32_t slot = e & kSlotMask;
     switch ((e >> kKindShift) & 3u) {
         case 0: {
             const TriPrim& tri = g.tris[slot];
-            if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, t, b1,
-                               b2))
+            if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, h.t,
+                               h.b1, h.b2))
                 return false;
-            prim = tri.prim;
+            h.prim = tri.prim;
             return true;
         }
         case 1: {
@@ -111,21 +130,21 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
             ++c.sph_tests;
             bool hit;
             if (s.xform == kNoTransform) {
-                hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
+                hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, h.t);
             } else {
                 const Transform& x = g.xforms[s.xform];
                 Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
                 double a = glm::dot(d, d);
                 hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius, sphere_origin_error(x, s, r.o),
-                                       limit, t);
+                                       limit, h.t);
             }
             if (!hit) return false;
             ++c.sph_hits;
-            prim = s.prim;
-            b1 = b2 = 0;
+            h.prim = s.prim;
+            h.b1 = h.b2 = 0;
             return true;
         }
-        default: {
+        case 2: {
             const BoxPrim& bx = g.boxes[slot];
             ++c.shape_boxes;
             int face = 0;
@@ -133,19 +152,21 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
             if (bx.xform == kNoTransform) {
                 // The identity's own error bound (γ₃|o|, as a transform would give), so that a
                 // scene scaled by 2^k decides edge cases exactly as the unscaled one.
-                hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit, t,
+                hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit, h.t,
                                           face);
             } else {
                 const Transform& x = g.xforms[bx.xform];
                 hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
-                                          x.inv_point_error(r.o) + bx.band, limit, t, face);
+                                          x.inv_point_error(r.o) + bx.band, limit, h.t, face);
             }
             if (!hit) return false;
-            prim = bx.prim;
-            b1 = face;
-            b2 = 0;
+            h.prim = bx.prim;
+            h.b1 = face;
+            h.b2 = 0;
             return true;
         }
+        default:
+            return test_other(g, r, slot, limit, c, h);
     }
 }
 

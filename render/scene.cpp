@@ -141,10 +141,16 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
                 break;
             }
             case ShapeKind::Plane:
+            case ShapeKind::Cylinder:
+            case ShapeKind::Cone:
+            case ShapeKind::Torus:
+            case ShapeKind::Disc:
+            case ShapeKind::Csg:
+            case ShapeKind::Instance:
                 transmissive_unbounded_ = true;
                 break;
         }
-        if (sh.kind == ShapeKind::Plane || !(lo.x <= hi.x)) continue;
+        if (transmissive_unbounded_ || !(lo.x <= hi.x)) continue;
         // Pad by a relative margin far above the rounding of the shapes' own intersection code,
         // so the culling box is conservative (it only decides whether to look, never the result).
         const Vec3 pad = (glm::abs(lo) + glm::abs(hi) + (hi - lo)) * 1e-7;

@@ -53,7 +53,28 @@ struct MaterialSpec {
 };
 
 // ---- geometry -------------------------------------------------------------------------------
-enum class ShapeKind { Sphere, Box, Triangle, Plane, Mesh };
+enum class ShapeKind { Sphere, Box, Triangle, Plane, Mesh, Cylinder, Cone, Torus, Disc, Csg, Instance };
+enum class CsgOp { Union, Intersection, Difference };
+
+// A shape inside a prototype or a CSG whose material is given by what contains it: the CSG's
+// material, else the instance's (ShapeSpec::material of the Instance shape).
+inline constexpr uint32_t kInheritMaterial = 0xffffffffu;
+
+struct ShapeSpec;
+// A CSG solid: its members in the CSG's own frame (each with its own object_to_world), combined by
+// `op` (Difference: the first member minus all the others). Members are solids: sphere, box,
+// closed cylinder or cone, torus, plane (the half-space n·p ≤ distance), closed mesh, nested CSG.
+struct CsgSpec {
+    CsgOp op = CsgOp::Union;
+    std::vector<ShapeSpec> members;
+};
+
+// Geometry stored once and added any number of times by Instance shapes (a two-level BVH). Its
+// shapes are in the prototype's own frame; none of them is an Instance.
+struct PrototypeSpec {
+    std::vector<ShapeSpec> shapes;
+    uint32_t tag = 0;
+};
 
 // A triangle mesh in the object's own frame. uvs and normals are empty or one per vertex.
 struct MeshData {
@@ -82,14 +103,26 @@ struct ShapeSpec {
     double uv_scale = 1.0;
     // Mesh
     std::shared_ptr<const MeshData> mesh;
+    // Cylinder (radius), cone (radius at base, cap_radius at cap): axis from base to cap; open:
+    // no end caps. Disc: center, normal, radius, and a hole of radius `hole` (0: none).
+    Vec3 base{0, 0, 0}, cap{0, 1, 0};
+    double cap_radius = 0.0;
+    bool open = false;
+    double hole = 0.0;
+    // Torus: centred at the origin of its frame, in the xz-plane, around the y axis.
+    double major = 1.0, minor = 0.25;
+    // Csg
+    std::shared_ptr<const CsgSpec> csg;
+    // Instance: an index into SceneSpec::prototypes, placed by object_to_world
+    uint32_t prototype = 0;
 
     Mat4 object_to_world{1.0};  // scale/rotate/translate in the order written, composed
-    uint32_t material = 0;      // index into SceneSpec::materials
+    uint32_t material = 0;      // index into SceneSpec::materials, or kInheritMaterial (see there)
     uint32_t tag = 0;
 };
 
 // ---- lights and camera ----------------------------------------------------------------------
-enum class LightKind { Point, Area };
+enum class LightKind { Point, Area, Spot };
 enum class LightSampling { Jittered, Uniform };
 
 struct LightSpec {
@@ -101,6 +134,10 @@ struct LightSpec {
     bool adaptive = false;
     Color color{1, 1, 1};
     double intensity = 1.0;
+    // Spot: full intensity within `angle` degrees of the axis position → look_at, none beyond
+    // `falloff`, smoothstep in between (0 < angle ≤ falloff ≤ 90).
+    Vec3 look_at{0, -1, 0};
+    double angle = 30.0, falloff = 45.0;
     uint32_t tag = 0;
 };
 
@@ -130,6 +167,7 @@ struct SceneSpec {
     std::vector<LightSpec> lights;
     std::vector<MaterialSpec> materials;
     std::vector<ShapeSpec> shapes;
+    std::vector<PrototypeSpec> prototypes;
 };
 
 }  // namespace wsd::render
