@@ -191,7 +191,7 @@ struct Block {
 // ---- statements ---------------------------------------------------------------------------------
 
 enum class StmtKind : uint8_t { Let, For, If, Include, Object, Bad };
-enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh };
+enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh, Cylinder, Cone, Torus, Disc };
 
 // The common head of every statement node; `keyword` is its first token.
 struct Stmt : Downcast<Stmt> {

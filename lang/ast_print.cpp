@@ -53,6 +53,14 @@ const char* block_name(BlockKind kind) {
             return "plane";
         case BlockKind::Mesh:
             return "mesh";
+        case BlockKind::Cylinder:
+            return "cylinder";
+        case BlockKind::Cone:
+            return "cone";
+        case BlockKind::Torus:
+            return "torus";
+        case BlockKind::Disc:
+            return "disc";
     }
     return "?";
 }

@@ -34,6 +34,17 @@ constexpr Keyword keywords[] = {
     {"triangle", TokenKind::Triangle},
     {"plane", TokenKind::Plane},
     {"mesh", TokenKind::Mesh},
+    {"cylinder", TokenKind::Cylinder},
+    {"cone", TokenKind::Cone},
+    {"torus", TokenKind::Torus},
+    {"disc", TokenKind::Disc},
+    {"fn", TokenKind::Fn},
+    {"return", TokenKind::Return},
+    {"group", TokenKind::Group},
+    {"union", TokenKind::Union},
+    {"intersection", TokenKind::Intersection},
+    {"difference", TokenKind::Difference},
+    {"object", TokenKind::Object},
     {"material", TokenKind::Material},
     {"image", TokenKind::Image},
     {"checker", TokenKind::Checker},
@@ -170,6 +181,10 @@ bool is_statement_keyword(TokenKind kind) {
         case TokenKind::Triangle:
         case TokenKind::Plane:
         case TokenKind::Mesh:
+        case TokenKind::Cylinder:
+        case TokenKind::Cone:
+        case TokenKind::Torus:
+        case TokenKind::Disc:
             return true;
         default:
             return false;

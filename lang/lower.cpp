@@ -55,6 +55,11 @@ std::map<std::string_view, BlockTable> make_tables() {
     written_as(t["triangle"], "uv", "uv", 3, 3);
     t["plane"] = generated(Element::Plane, true);
     t["mesh"] = generated(Element::Mesh, true);
+    t["cylinder"] = generated(Element::Cylinder, true);
+    t["cone"] = generated(Element::Cone, true);
+    t["torus"] = generated(Element::Torus, true);
+    t["disc"] = generated(Element::Disc, true);
+    t["light spot"] = generated(Element::SpotLight);
     t["material"] = generated(Element::Material);
     // `base` is the language's own: a copy of another material value, applied first.
     t["material"].properties.insert(t["material"].properties.begin(), {"base", render::FieldType::Material});
@@ -190,14 +195,23 @@ const BlockTable* statement_table(const ObjectStmt& stmt, Diagnostics& diags) {
             return &block_table("plane");
         case BlockKind::Mesh:
             return &block_table("mesh");
+        case BlockKind::Cylinder:
+            return &block_table("cylinder");
+        case BlockKind::Cone:
+            return &block_table("cone");
+        case BlockKind::Torus:
+            return &block_table("torus");
+        case BlockKind::Disc:
+            return &block_table("disc");
     }
     if (stmt.name == "area") return &block_table("light area");
     if (stmt.name == "point") return &block_table("light point");
+    if (stmt.name == "spot") return &block_table("light spot");
     Span at = stmt.name.empty() ? stmt.keyword : stmt.name_span;
     Diagnostic& d = diags.error(
-        at, stmt.name.empty() ? std::string("light needs a kind: point or area")
-                              : "unknown light kind '" + std::string(stmt.name) + "' (point or area)");
-    std::string match = closest_match(stmt.name, {"point", "area"});
+        at, stmt.name.empty() ? std::string("light needs a kind: point, area or spot")
+                              : "unknown light kind '" + std::string(stmt.name) + "' (point, area or spot)");
+    std::string match = closest_match(stmt.name, {"point", "area", "spot"});
     if (!stmt.name.empty() && !match.empty()) d.help.push_back("did you mean '" + match + "'?");
     return nullptr;
 }
@@ -307,6 +321,7 @@ std::optional<Lowered<render::LightSpec>> lower_light(BlockReader& r) {
     render::LightSpec l;
     const bool area = r.table().element == render::Element::AreaLight;
     if (area) l.kind = render::LightKind::Area;
+    if (r.table().element == render::Element::SpotLight) l.kind = render::LightKind::Spot;
     r.require("position");
     r.apply(l);
     if (r.ok()) {
@@ -358,6 +373,18 @@ std::optional<LoweredObject> lower_object(BlockReader& r, BlockContext& ctx) {
             break;
         case render::Element::Mesh:
             lower_mesh(r, ctx, o);
+            break;
+        case render::Element::Cylinder:
+            o.shape.kind = render::ShapeKind::Cylinder;
+            break;
+        case render::Element::Cone:
+            o.shape.kind = render::ShapeKind::Cone;
+            break;
+        case render::Element::Torus:
+            o.shape.kind = render::ShapeKind::Torus;
+            break;
+        case render::Element::Disc:
+            o.shape.kind = render::ShapeKind::Disc;
             break;
         default:
             return std::nullopt;

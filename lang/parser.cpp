@@ -133,6 +133,10 @@ Stmt* Parser::parse_statement() {
         case TokenKind::Triangle:
         case TokenKind::Plane:
         case TokenKind::Mesh:
+        case TokenKind::Cylinder:
+        case TokenKind::Cone:
+        case TokenKind::Torus:
+        case TokenKind::Disc:
             return parse_object();
         default:
             break;
@@ -309,6 +313,14 @@ BlockKind block_kind(TokenKind kind) {
             return BlockKind::Triangle;
         case TokenKind::Plane:
             return BlockKind::Plane;
+        case TokenKind::Cylinder:
+            return BlockKind::Cylinder;
+        case TokenKind::Cone:
+            return BlockKind::Cone;
+        case TokenKind::Torus:
+            return BlockKind::Torus;
+        case TokenKind::Disc:
+            return BlockKind::Disc;
         default:
             return BlockKind::Mesh;
     }
@@ -330,7 +342,7 @@ Stmt* Parser::parse_object() {
             s->name_span = span_of(tok_);
             advance();
         } else {
-            error_here("expected the light kind (point or area) after 'light', found " + found());
+            error_here("expected the light kind (point, area or spot) after 'light', found " + found());
             // With the block right there, read it anyway: its own errors are still worth having.
             if (check(TokenKind::LBrace)) panic_ = false;
         }

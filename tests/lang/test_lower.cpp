@@ -331,8 +331,8 @@ TEST_CASE("area lights need non-zero, non-parallel edges and a bounded grid", "[
           std::vector<std::string>{"1:65: 'samples' must be an integer from 1 to 1024, found 0"});
     CHECK(body_errors("light area { position <0, 0, 0> u <1, 0, 0> }") ==
           std::vector<std::string>{"1:1: missing property 'v' in light area"});
-    CHECK(body_errors("light spot { position <0, 0, 0> }") ==
-          std::vector<std::string>{"1:7: unknown light kind 'spot' (point or area)"});
+    CHECK(body_errors("light spto { position <0, 0, 0> }") ==
+          std::vector<std::string>{"1:7: unknown light kind 'spto' (point, area or spot)"});
 }
 
 TEST_CASE("materials: base first, overrides, the reflection + transmission rule", "[lower][material]") {

@@ -378,7 +378,7 @@ TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
                                    "3:5: expected a name after 'let', found '='",
                                    "5:1: expected '}' to close box block, found 'let'",
                                    "6:1: expected ')', found 'let'", "7:1: expected an expression, found '}'",
-                                   "8:7: expected the light kind (point or area) after 'light', found '{'",
+                                   "8:7: expected the light kind (point, area or spot) after 'light', found '{'",
                                    "9:5: expected a name after 'let', found keyword 'sphere'",
                                    "10:19: 'else' without a matching 'if'",
                                    "12:1: expected '}' to close the for body, found end of file"});
