@@ -23,6 +23,7 @@ int body_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec
     const double err_c = gamma(8) * scale_c +
                          2 * (std::abs(o.x) * oe.x + std::abs(o.z) * oe.z + std::abs(rho * k) * oe.y) +
                          (oe.x * oe.x + oe.z * oe.z + k * k * oe.y * oe.y);
+    const double err_a = gamma(4) * (d.x * d.x + d.z * d.z + (k * d.y) * (k * d.y));
     if (a == 0 && b == 0) return 0;  // along the axis of a cylinder, or a line on a cone's nappe
     double disc;
     if (k == 0) {
@@ -34,14 +35,12 @@ int body_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec
     } else {
         disc = difference_of_products(b, b, a, c);
         // A line through the apex meets the double cone in a double root: the discriminant is
-        // zero up to the error of its terms, and so is taken to be.
-        const double err_a = gamma(4) * (d.x * d.x + d.z * d.z + (k * d.y) * (k * d.y));
+        // zero up to the error of its terms, and so is taken to be (a square root of that error
+        // would move the root by about √ε).
         const double err_disc = gamma(4) * (b * b + std::abs(a * c)) + 2 * std::abs(b) * err_b +
                                 std::abs(a) * err_c + std::abs(c) * err_a;
-        if (!(disc >= 0)) {
-            if (!(disc >= -err_disc)) return 0;
-            disc = 0;
-        }
+        if (!(disc >= -err_disc)) return 0;
+        if (disc <= err_disc) disc = 0;
     }
     const double qq = -(b + std::copysign(std::sqrt(disc), b));
     const bool on_surface = std::abs(c) <= err_c;
@@ -65,8 +64,14 @@ int body_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec
     for (int i = 0; i < n; ++i) {
         const double t = roots[i];
         if (!std::isfinite(t)) continue;
+        // The root's own error (first order in the coefficients' errors; a double root's is
+        // the square root of that), carried to y so that a root at the apex or a rim stays in.
+        const double shift = t * t * err_a + 2 * std::abs(t) * err_b + err_c;
+        const double slope = 2 * std::abs(a * t + b);
+        const double err_t = disc == 0 ? std::sqrt(shift / std::abs(a)) : shift / slope;
         const double y = o.y + t * d.y;
-        const double ey = gamma(3) * (std::abs(o.y) + std::abs(t * d.y)) + oe.y;
+        const double ey = gamma(3) * (std::abs(o.y) + std::abs(t * d.y)) + oe.y +
+                          (std::isfinite(err_t) ? err_t * std::abs(d.y) : 0.0);
         if (!(y >= -ey && y <= q.h + ey)) continue;
         out[m++] = {t, kQuadricBody, self[i]};
     }
