@@ -204,7 +204,7 @@ TEST_CASE("UVs: u around the axis, v along it (cylinder); around both circles (t
     CHECK(s.uv.y == Approx(0.25));
 }
 
-TEST_CASE("hard case: torus rays that graze the tube", "[quadric][robust]") {
+TEST_CASE("R66 torus rays that graze the tube", "[quadric][robust]") {
     // Lines tangent to the outer equator (x = R + r) and to the top (y = r), moved in or out by a
     // relative 1e-9: in hits, out misses, and every hit lies on the surface.
     const double major = 1, minor = 0.25;
@@ -226,7 +226,7 @@ TEST_CASE("hard case: torus rays that graze the tube", "[quadric][robust]") {
     }
 }
 
-TEST_CASE("hard case: torus rays from 1e5 radii away", "[quadric][robust]") {
+TEST_CASE("R67 torus rays from 1e5 radii away", "[quadric][robust]") {
     const double major = 1, minor = 0.3;
     auto g = one(torus(major, minor, rotate_xyz({25, 10, 0})));
     // Far origins: the same silhouette area as the near grid, and hits on the surface.
@@ -252,7 +252,7 @@ TEST_CASE("hard case: torus rays from 1e5 radii away", "[quadric][robust]") {
     CHECK(hits > ray_budget(200));
 }
 
-TEST_CASE("hard case: tori from 1e-3 to 1e3 give the same image up to scale", "[quadric][robust]") {
+TEST_CASE("R68 tori from 1e-3 to 1e3 give the same image up to scale", "[quadric][robust]") {
     const Grid unit = grid_along({0.3, -1, 0.45}, {0, 0, 0}, 3, 200, 10);
     std::vector<uint8_t> reference;
     for (double s : {1.0, 1e-3, 1e3, 0x1p-10, 0x1p10}) {
@@ -280,7 +280,7 @@ TEST_CASE("hard case: tori from 1e-3 to 1e3 give the same image up to scale", "[
     }
 }
 
-TEST_CASE("hard case: a cylinder seen exactly along its axis and exactly edge-on", "[quadric][robust]") {
+TEST_CASE("R69 a cylinder seen exactly along its axis and exactly edge-on", "[quadric][robust]") {
     auto g = one(cylinder({0, 0, 0}, {0, 2, 0}, 1));
     RayStats st;
     // Along the axis: every ray inside the radius meets the top cap at exactly t = 3, with a
@@ -316,7 +316,7 @@ TEST_CASE("hard case: a cylinder seen exactly along its axis and exactly edge-on
     CHECK((o + second->t * Vec3(0, 0, 1)).z == Approx(1));
 }
 
-TEST_CASE("hard case: rays through a cone's apex", "[quadric][robust]") {
+TEST_CASE("R70 rays through a cone's apex", "[quadric][robust]") {
     auto g = one(cone({0, 0, 0}, 1, {0, 2, 0}, 0));
     RayStats st;
     // Down the axis: the apex at t = 3 (a double root), with a finite normal.

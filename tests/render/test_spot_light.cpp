@@ -85,7 +85,7 @@ TEST_CASE("between angle and falloff a spot fades by smoothstep of the cosines",
     CHECK(partial > 300);
 }
 
-TEST_CASE("hard case: a spot's edge exactly on a shading point", "[spot][robust]") {
+TEST_CASE("R71 a spot's edge exactly on a shading point", "[spot][robust]") {
     wsd::render::Light l = wsd::render::prepare_light(spot({0, 0, 0}, {0, -1, 0}, 30, 60));
     // cos 60° is exactly 0.5: the direction (√3/2, −1/2)·r is exactly on the falloff edge in cos.
     CHECK(l.cos_falloff == 0.5);
