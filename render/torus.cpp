@@ -8,8 +8,9 @@
 //    split f' into monotone pieces, whose roots split f into monotone pieces, each holding at most
 //    one root of f. No closed-form (Ferrari) solution, whose cancellations lose grazing roots.
 // 3. Each piece whose ends differ in sign is solved on the accurate implicit function
-//    (ρ − R)² + y² − r², one of the quartic's two factors: the other, (ρ + R)² + y² − r², vanishes
-//    only on a spindle torus's inner "lemon", which is not part of the surface.
+//    (ρ − R)² + y² − r² by Newton's method kept in the bracket, one of the quartic's two
+//    factors: the other, (ρ + R)² + y² − r², vanishes only on a spindle torus's inner "lemon",
+//    which is not part of the surface.
 #include <algorithm>
 #include <cmath>
 
@@ -25,33 +26,28 @@ double horner(const double* c, int degree, double x) {
     return v;
 }
 
-// A root of g in [lo, hi] where g(lo) and g(hi) differ in sign: regula falsi (Illinois) with a
-// bisection every third step, until the bracket cannot shrink.
-template <class G>
-double refine(G g, double lo, double hi, double glo, double ghi) {
-    int side = 0;
-    for (int i = 0; i < 200; ++i) {
-        double m;
-        if (i % 3 == 2 || glo == ghi) {
-            m = 0.5 * (lo + hi);
-        } else {
-            m = (lo * ghi - hi * glo) / (ghi - glo);
-            if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
-        }
-        if (!(m > lo && m < hi)) break;  // adjacent doubles
-        const double gm = g(m);
-        if (gm == 0) return m;
-        if ((gm < 0) == (glo < 0)) {
-            lo = m, glo = gm;
-            if (side == -1) ghi *= 0.5;
-            side = -1;
-        } else {
-            hi = m, ghi = gm;
-            if (side == 1) glo *= 0.5;
-            side = 1;
-        }
+// A root of g in [lo, hi] where g(lo) and g(hi) differ in sign: Newton's method from the secant
+// point, kept inside the shrinking bracket (a step that leaves it bisects instead), until a step
+// moves by at most one ULP. `gd(x, g, dg)` gives the value and the derivative.
+template <class GD>
+double refine(GD gd, double lo, double hi, double glo, double ghi) {
+    double x = (lo * ghi - hi * glo) / (ghi - glo);
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    for (int i = 0; i < 100; ++i) {
+        double g, dg;
+        gd(x, g, dg);
+        if (g == 0) return x;
+        if ((g < 0) == (glo < 0))
+            lo = x;
+        else
+            hi = x;
+        double next = x - g / dg;
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) return x;  // the bracket is two adjacent doubles
+        if (next == x || next == next_float_up(x) || next == next_float_down(x)) return next;
+        x = next;
     }
-    return 0.5 * (lo + hi);
+    return x;
 }
 
 // The roots of the polynomial c (degree 2 or 3) in (lo, hi), ascending, given its derivative's
@@ -64,7 +60,13 @@ int roots_between(const double* c, int degree, const double* crit, int n_crit, d
     for (int i = 0; i < n_crit; ++i)
         if (crit[i] > lo && crit[i] < hi) pts[np++] = crit[i];
     pts[np++] = hi;
+    double dc[3];
+    for (int i = 1; i <= degree; ++i) dc[i - 1] = i * c[i];
     auto g = [&](double x) { return horner(c, degree, x); };
+    auto gd = [&](double x, double& v, double& dv) {
+        v = horner(c, degree, x);
+        dv = horner(dc, degree - 1, x);
+    };
     int n = 0;
     for (int i = 0; i + 1 < np; ++i) {
         const double a = pts[i], b = pts[i + 1];
@@ -73,7 +75,7 @@ int roots_between(const double* c, int degree, const double* crit, int n_crit, d
             if (i > 0) out[n++] = a;
             continue;
         }
-        if ((ga < 0) != (gb < 0) && gb != 0) out[n++] = refine(g, a, b, ga, gb);
+        if ((ga < 0) != (gb < 0) && gb != 0) out[n++] = refine(gd, a, b, ga, gb);
     }
     return n;
 }
@@ -124,18 +126,40 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
     f[0] = g * g - r4 * cxz;
     const double d3[4] = {f[1], 2 * f[2], 3 * f[3], 4 * f[4]};
 
-    // Every root has |p| ≤ R + r, so |s| ≤ R + r; the bracket is a little wider than that.
-    const double span = reach * 1.0625 + std::abs(b);
+    // Every root lies in the bounding sphere (|p| ≤ R + r) and in the slab |y| ≤ r: the bracket
+    // is that interval of s, widened by 2^-20 of the size (beyond either bound the implicit
+    // function is positive, so any widening keeps the ends outside the tube).
+    const double pad = 0x1p-20 * reach;
+    double lo = -std::sqrt(std::max(0.0, reach * reach - cc)) - std::abs(b) - pad;
+    double hi = -lo;
+    if (u.y != 0) {
+        double y0 = (-minor - c.y) / u.y, y1 = (minor - c.y) / u.y;
+        if (y0 > y1) std::swap(y0, y1);
+        lo = std::max(lo, y0 - pad);
+        hi = std::min(hi, y1 + pad);
+    } else if (std::abs(c.y) > minor) {
+        return 0;
+    }
+    if (!(lo < hi)) return 0;
     double crit2[2], crit3[3];
     const int n2 = quadratic_roots(12 * f[4], 6 * f[3], 2 * f[2], crit2);
-    const int n3 = roots_between(d3, 3, crit2, n2, -span, span, crit3);
+    const int n3 = roots_between(d3, 3, crit2, n2, lo, hi, crit3);
 
     auto implicit = [&](double s) { return torus_f(major, minor, c + s * u); };
+    // (ρ − R)² + y² − r² and its derivative along u: 2(ρ − R)·(p_xz·u_xz)/ρ + 2·y·u_y (NaN on
+    // the axis, where a step bisects).
+    auto implicit_d = [&](double s, double& v, double& dv) {
+        const Vec3 p = c + s * u;
+        const double rho = std::sqrt(p.x * p.x + p.z * p.z);
+        const double a = rho - major;
+        v = (a * a + p.y * p.y) - minor * minor;
+        dv = 2 * (a * (p.x * u.x + p.z * u.z) / rho + p.y * u.y);
+    };
     double pts[5];
     int np = 0;
-    pts[np++] = -span;
+    pts[np++] = lo;
     for (int i = 0; i < n3; ++i) pts[np++] = crit3[i];
-    pts[np++] = span;
+    pts[np++] = hi;
 
     // The origin's own surface: the implicit function at o vanishes within its error bound.
     const double rho_o = std::sqrt(o.x * o.x + o.z * o.z);
@@ -157,7 +181,7 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
         if (gnext == 0 && i + 2 < np) {
             s = pts[i + 1];
         } else if ((gprev < 0) != (gnext < 0) && gprev != 0) {
-            s = refine(implicit, pts[i], pts[i + 1], gprev, gnext);
+            s = refine(implicit_d, pts[i], pts[i + 1], gprev, gnext);
         } else {
             gprev = gnext;
             continue;
