@@ -12,7 +12,7 @@
 namespace wsd::render {
 
 enum class Effect : uint8_t {
-    PointShadows,  // a point light (hard shadows)
+    PointShadows,  // a point or spot light (hard shadows)
     AreaShadows,   // an area light (soft shadows)
     Reflection,    // a material with reflection > 0
     Refraction,    // a material with transmission > 0 (Fresnel, Snell, light shadows)

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "render/effects.h"
 #include "render/lights.h"
 #include "render/math.h"
 #include "tests/render/scene_builders.h"
@@ -138,4 +139,12 @@ TEST_CASE("spot light specs out of range are build errors", "[spot]") {
         REQUIRE(errors.size() == 1);
         CHECK(errors[0].item == wsd::render::SpecItem::Light);
     }
+}
+
+TEST_CASE("a spot light's effect is point-light shadows, not area-light ones", "[spot][effects]") {
+    auto spec = basic_scene(4, 4);
+    spec.lights.push_back(spot({0, 5, 0}, {0, 0, 0}, 30, 45));
+    const auto fx = wsd::render::analyse_effects(spec);
+    CHECK(fx.has(wsd::render::Effect::PointShadows));
+    CHECK_FALSE(fx.has(wsd::render::Effect::AreaShadows));
 }
