@@ -237,20 +237,15 @@ private:
         for (size_t li = 0; li < lights_.size(); ++li) {
             const Light& light = lights_[li];
             Vis sd(0), ss(0);
-            if (!light.area) {
+            if (light.spot) [[unlikely]] {
+                spot_light(sh, light, sd, ss);
+            } else if (!light.area) {
                 const Vec3 to_light = light.position - sh.p;
-                // A spot light is a point light whose terms its cone scales; outside the cone
-                // it needs no shadow ray.
-                const double cone = light.spot ? spot_factor(light, to_light) : 1.0;
-                const Term term = cone > 0 ? sample_term(sh, to_light) : Term{0, 0, false};
+                const Term term = sample_term(sh, to_light);
                 if (term.needed) {
                     const Vis v = visibility(sh, to_light, light.position);
                     sd += v * term.nl;
                     ss += v * term.sp;
-                    if (light.spot) {
-                        sd *= cone;
-                        ss *= cone;
-                    }
                 }
             } else {
                 use_shaft_ = light.count() >= kShaftMinSamples && gather_shaft(sh, light);
@@ -263,6 +258,19 @@ private:
             sum += light.radiance * (kd * c * sd + m.specular * ss) * light.inv_count;
         }
         return sum;
+    }
+
+    // A spot light: a point light whose terms its cone scales (spot_factor); outside the cone it
+    // needs no shadow ray. Out of line, so that scenes without spot lights run the code they ran.
+    [[gnu::noinline]] void spot_light(const Shading& sh, const Light& light, Vis& sd, Vis& ss) {
+        const Vec3 to_light = light.position - sh.p;
+        const double cone = spot_factor(light, to_light);
+        if (!(cone > 0)) return;
+        const Term term = sample_term(sh, to_light);
+        if (!term.needed) return;
+        const Vis v = visibility(sh, to_light, light.position);
+        sd += v * (term.nl * cone);
+        ss += v * (term.sp * cone);
     }
 
     Vec3 cell_point(const Light& light, uint64_t lkey, int i, int j) const {
