@@ -61,6 +61,12 @@ std::map<std::string_view, BlockTable> make_tables() {
     t["torus"] = generated(Element::Torus, true);
     t["disc"] = generated(Element::Disc, true);
     t["light spot"] = generated(Element::SpotLight);
+    // POV-Ray's words for the same things.
+    t["light spot"].hints.emplace_back("point_at", "a spot light aims at its 'look_at'");
+    t["light spot"].hints.emplace_back("radius", "POV-Ray's spotlight 'radius' is wsd's 'angle'");
+    t["cone"].hints.emplace_back("radius", "a cone has a 'base_radius' and a 'cap_radius'");
+    t["torus"].hints.emplace_back("center", "a torus is centred at the origin: place it with 'translate'");
+    t["torus"].hints.emplace_back("radius", "a torus has a 'major' and a 'minor' radius");
     t["material"] = generated(Element::Material);
     // `base` is the language's own: a copy of another material value, applied first.
     t["material"].properties.insert(t["material"].properties.begin(), {"base", render::FieldType::Material});
