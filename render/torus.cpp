@@ -96,6 +96,55 @@ int quadratic_roots(double c2, double c1, double c0, double* out) {
     return 2;
 }
 
+// The quartic f(s) = (|p|² + R² − r²)² − 4R²(px² + pz²) for p = c + s·u, expanded: f[k] is the
+// coefficient of s^k.
+void torus_quartic(double major, double minor, const Vec3& c, const Vec3& u, double* f) {
+    const double e = glm::dot(u, u);
+    const double b = glm::dot(c, u);
+    const double g = glm::dot(c, c) + (major * major - minor * minor);
+    const double r4 = 4 * major * major;
+    f[4] = e * e;
+    f[3] = 4 * e * b;
+    f[2] = 4 * b * b + 2 * e * g - r4 * (u.x * u.x + u.z * u.z);
+    f[1] = 4 * b * g - 2 * r4 * (c.x * u.x + c.z * u.z);
+    f[0] = g * g - r4 * (c.x * c.x + c.z * c.z);
+}
+
+// The interval of s that can hold a root: the bounding sphere's (|p| ≤ R + r) cut by the slab
+// |y| ≤ r, widened by 2^-20 of the size (beyond either bound the implicit function is positive,
+// so any widening keeps the ends outside the tube). False when it is empty.
+bool torus_bracket(double major, double minor, const Vec3& c, const Vec3& u, double& lo, double& hi) {
+    const double reach = major + minor;
+    const double cc = glm::dot(c, c);
+    if (cc > reach * reach * (1 + gamma(8))) return false;  // the line passes the bounding sphere
+    const double pad = 0x1p-20 * reach;
+    lo = -std::sqrt(std::max(0.0, reach * reach - cc)) - std::abs(glm::dot(c, u)) - pad;
+    hi = -lo;
+    if (u.y != 0) {
+        double y0 = (-minor - c.y) / u.y, y1 = (minor - c.y) / u.y;
+        if (y0 > y1) std::swap(y0, y1);
+        lo = std::max(lo, y0 - pad);
+        hi = std::min(hi, y1 + pad);
+    } else if (std::abs(c.y) > minor) {
+        return false;
+    }
+    return lo < hi;
+}
+
+// When the origin o (error oe) lies on the surface, within its error bound: how far from it, in
+// distance, the root of that surface may land; otherwise −1.
+double torus_self_reach(double major, double minor, const Vec3& o, const Vec3& oe) {
+    const double rho = std::sqrt(o.x * o.x + o.z * o.z);
+    const double a = rho - major;
+    const double f = (a * a + o.y * o.y) - minor * minor;
+    const double err_f = gamma(6) * (2 * std::abs(a) * (rho + major) + o.y * o.y + minor * minor) +
+                         2 * (std::abs(a) * (oe.x + oe.z) + std::abs(o.y) * oe.y);
+    if (!(std::abs(f) <= err_f)) return -1;
+    const double oe_max = std::max({oe.x, oe.y, oe.z});
+    const double o_max = std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)});
+    return 16 * (gamma(4) * (o_max + major + minor) + oe_max) + 2 * err_f / minor;
+}
+
 }  // namespace
 
 int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec3& oe, Crossing* out) {
@@ -106,44 +155,18 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
     // The point of the line closest to the centre: s measures from it in unit steps.
     const double t0 = -glm::dot(o, u);
     const Vec3 c = o + t0 * u;
-    const double reach = major + minor;  // the bounding sphere's radius
-    const double cc = glm::dot(c, c);
-    if (cc > reach * reach * (1 + gamma(8))) return 0;
+    double lo, hi;
+    if (!torus_bracket(major, minor, c, u, lo, hi)) return 0;
 
-    // f(s) = (|p|² + R² − r²)² − 4R²(px² + pz²) for p = c + s·u, expanded.
-    const double e = glm::dot(u, u);
-    const double b = glm::dot(c, u);
-    const double g = cc + (major * major - minor * minor);
-    const double uxz = u.x * u.x + u.z * u.z;
-    const double cuxz = c.x * u.x + c.z * u.z;
-    const double cxz = c.x * c.x + c.z * c.z;
-    const double r4 = 4 * major * major;
+    // Breakpoints: the roots of f' between the roots of f''; f is monotone between them.
     double f[5];
-    f[4] = e * e;
-    f[3] = 4 * e * b;
-    f[2] = 4 * b * b + 2 * e * g - r4 * uxz;
-    f[1] = 4 * b * g - 2 * r4 * cuxz;
-    f[0] = g * g - r4 * cxz;
+    torus_quartic(major, minor, c, u, f);
     const double d3[4] = {f[1], 2 * f[2], 3 * f[3], 4 * f[4]};
-
-    // Every root lies in the bounding sphere (|p| ≤ R + r) and in the slab |y| ≤ r: the bracket
-    // is that interval of s, widened by 2^-20 of the size (beyond either bound the implicit
-    // function is positive, so any widening keeps the ends outside the tube).
-    const double pad = 0x1p-20 * reach;
-    double lo = -std::sqrt(std::max(0.0, reach * reach - cc)) - std::abs(b) - pad;
-    double hi = -lo;
-    if (u.y != 0) {
-        double y0 = (-minor - c.y) / u.y, y1 = (minor - c.y) / u.y;
-        if (y0 > y1) std::swap(y0, y1);
-        lo = std::max(lo, y0 - pad);
-        hi = std::min(hi, y1 + pad);
-    } else if (std::abs(c.y) > minor) {
-        return 0;
-    }
-    if (!(lo < hi)) return 0;
-    double crit2[2], crit3[3];
+    double crit2[2], pts[5];
     const int n2 = quadratic_roots(12 * f[4], 6 * f[3], 2 * f[2], crit2);
-    const int n3 = roots_between(d3, 3, crit2, n2, lo, hi, crit3);
+    int np = 1 + roots_between(d3, 3, crit2, n2, lo, hi, pts + 1);
+    pts[0] = lo;
+    pts[np++] = hi;
 
     auto implicit = [&](double s) { return torus_f(major, minor, c + s * u); };
     // (ρ − R)² + y² − r² and its derivative along u: 2(ρ − R)·(p_xz·u_xz)/ρ + 2·y·u_y (NaN on
@@ -155,23 +178,7 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
         v = (a * a + p.y * p.y) - minor * minor;
         dv = 2 * (a * (p.x * u.x + p.z * u.z) / rho + p.y * u.y);
     };
-    double pts[5];
-    int np = 0;
-    pts[np++] = lo;
-    for (int i = 0; i < n3; ++i) pts[np++] = crit3[i];
-    pts[np++] = hi;
-
-    // The origin's own surface: the implicit function at o vanishes within its error bound.
-    const double rho_o = std::sqrt(o.x * o.x + o.z * o.z);
-    const double a_o = rho_o - major;
-    const double f_o = (a_o * a_o + o.y * o.y) - minor * minor;
-    const double err_f = gamma(6) * (2 * std::abs(a_o) * (rho_o + major) + o.y * o.y + minor * minor) +
-                         2 * (std::abs(a_o) * (oe.x + oe.z) + std::abs(o.y) * oe.y);
-    const bool on_surface = std::abs(f_o) <= err_f;
-    const double oe_max = std::max({oe.x, oe.y, oe.z});
-    const double o_max = std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)});
-    // How far from t = 0 the root of the origin's own surface may land, in distance.
-    const double self_reach = 16 * (gamma(4) * (o_max + reach) + oe_max) + 2 * err_f / minor;
+    const double self_reach = torus_self_reach(major, minor, o, oe);
 
     int n = 0;
     double gprev = implicit(pts[0]);
@@ -187,8 +194,7 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
             continue;
         }
         gprev = gnext;
-        const double t = (t0 + s) / len;
-        out[n++] = {t, kQuadricBody, on_surface && std::abs(t0 + s) <= self_reach};
+        out[n++] = {(t0 + s) / len, kQuadricBody, std::abs(t0 + s) <= self_reach};
     }
     return n;
 }
