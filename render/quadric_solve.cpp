@@ -32,6 +32,27 @@ BodyQuadratic body_quadratic(double k, double r0, const Vec3& o, const Vec3& d, 
     return f;
 }
 
+// The body quadratic's discriminant b² − ac at origin os, or false when there is no real root.
+bool body_discriminant(const BodyQuadratic& f, double k, double r0, const Vec3& os, const Vec3& d,
+                       double& disc) {
+    if (k == 0) {
+        // Haines et al.: the discriminant from the axis-to-closest-point vector, no b² − ac.
+        const double s = f.b / f.a;
+        const double lx = os.x - s * d.x, lz = os.z - s * d.z;
+        disc = f.a * (r0 * r0 - (lx * lx + lz * lz));
+        return disc >= 0;
+    }
+    disc = difference_of_products(f.b, f.b, f.a, f.c);
+    // A line through the apex meets the double cone in a double root: the discriminant is zero
+    // up to the error of its terms, and so is taken to be (a square root of that error would
+    // move the root by about √ε).
+    const double err_disc = gamma(4) * (f.b * f.b + std::abs(f.a * f.c)) + 2 * std::abs(f.b) * f.err_b +
+                            std::abs(f.a) * f.err_c + std::abs(f.c) * f.err_a;
+    if (!(disc >= -err_disc)) return false;
+    if (disc <= err_disc) disc = 0;
+    return true;
+}
+
 // The body x² + z² = (r0 + k·y)², 0 ≤ y ≤ h, with k = (r1 − r0)/h (0 for a cylinder).
 int body_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec3& oe, Crossing* out) {
     const double k = q.kind == ShapeKind::Cylinder ? 0.0 : (q.r1 - q.r0) / q.h;
@@ -48,22 +69,7 @@ int body_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec
     const double a = f.a, b = f.b, c = f.c;
     if (a == 0 && b == 0) return 0;  // along the axis of a cylinder, or a line on a cone's nappe
     double disc;
-    if (k == 0) {
-        // Haines et al.: the discriminant from the axis-to-closest-point vector, no b² − ac.
-        const double s = b / a;
-        const double lx = os.x - s * d.x, lz = os.z - s * d.z;
-        disc = a * (q.r0 * q.r0 - (lx * lx + lz * lz));
-        if (!(disc >= 0)) return 0;
-    } else {
-        disc = difference_of_products(b, b, a, c);
-        // A line through the apex meets the double cone in a double root: the discriminant is
-        // zero up to the error of its terms, and so is taken to be (a square root of that error
-        // would move the root by about √ε).
-        const double err_disc = gamma(4) * (b * b + std::abs(a * c)) + 2 * std::abs(b) * f.err_b +
-                                std::abs(a) * f.err_c + std::abs(c) * f.err_a;
-        if (!(disc >= -err_disc)) return 0;
-        if (disc <= err_disc) disc = 0;
-    }
+    if (!body_discriminant(f, k, q.r0, os, d, disc)) return 0;
     const double qq = -(b + std::copysign(std::sqrt(disc), b));
     double roots[2];  // from os
     int n = 0;
