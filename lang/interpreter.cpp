@@ -35,7 +35,18 @@ bool read_file(const std::string& path, std::string& out, std::string& reason) {
 
 using render::quoted;
 
+bool is_scene_element(const Stmt& s) {
+    if (s.kind != StmtKind::Object) return false;
+    const BlockKind kind = s.as<ObjectStmt>().block_kind;
+    return kind == BlockKind::Settings || kind == BlockKind::Camera || kind == BlockKind::Light;
+}
+
 }  // namespace
+
+std::string_view Interpreter::keyword_text(const Stmt& s) const {
+    return std::string_view(sources_.file(s.keyword.file).text)
+        .substr(s.keyword.begin, s.keyword.end - s.keyword.begin);
+}
 
 Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
     ok_ = ++in_.depth_ <= in_.limits_.eval_depth;
@@ -170,8 +181,12 @@ void Interpreter::exec(const Stmt& stmt) {
             exec_include(stmt.as<IncludeStmt>());
             break;
         case StmtKind::Object:
-            exec_object(stmt.as<ObjectStmt>());
+        case StmtKind::Group:
+        case StmtKind::Instance:
+            exec_object(stmt);
             break;
+        case StmtKind::Item:
+            break;  // read by the group or CSG body that holds it
         case StmtKind::Bad:
             break;  // the parser reported it
     }
@@ -329,7 +344,20 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
     programs_.push_back(std::move(program));
 }
 
-void Interpreter::exec_object(const ObjectStmt& stmt) {
+void Interpreter::exec_object(const Stmt& added) {
+    if (members_ && is_scene_element(added)) {
+        const std::string body = group_keyword(body_->group_kind);
+        Diagnostic& d = diags_.error(
+            added.keyword, "'" + std::string(keyword_text(added)) + "' cannot be in a " + body + " body");
+        d.notes.push_back({body_->keyword, "in this '" + body + "'"});
+        d.help.push_back("settings, the camera and lights belong to the scene: write them outside");
+        return;
+    }
+    if (members_ || added.kind != StmtKind::Object) {
+        if (ObjectPtr value = object_value(added)) deliver(value, added.keyword);
+        return;
+    }
+    const auto& stmt = added.as<ObjectStmt>();
     const BlockTable* table = statement_table(stmt, diags_);
     if (!table) return;
     std::optional<Span>* first = nullptr;  // a settings or camera block

@@ -13,8 +13,10 @@ namespace detail {
 
 namespace {
 
-const std::vector<std::string> statement_words = {"let",   "for",    "if",  "include",  "settings", "camera",
-                                                  "light", "sphere", "box", "triangle", "plane",    "mesh"};
+const std::vector<std::string> statement_words = {
+    "let",    "for",  "if",       "include", "settings",     "camera",     "light",
+    "sphere", "box",  "triangle", "plane",   "mesh",         "cylinder",   "cone",
+    "torus",  "disc", "group",    "union",   "intersection", "difference", "object"};
 
 }  // namespace
 
@@ -114,7 +116,7 @@ StmtList Parser::parse_statements(bool top_level) {
     return keep(statements);
 }
 
-// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt ;
+// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt | group_stmt | instance_stmt ;
 Stmt* Parser::parse_statement() {
     switch (tok_.kind) {
         case TokenKind::Let:
@@ -138,6 +140,13 @@ Stmt* Parser::parse_statement() {
         case TokenKind::Torus:
         case TokenKind::Disc:
             return parse_object();
+        case TokenKind::Group:
+        case TokenKind::Union:
+        case TokenKind::Intersection:
+        case TokenKind::Difference:
+            return parse_group_stmt();
+        case TokenKind::Object:
+            return parse_instance();
         default:
             break;
     }
@@ -411,7 +420,7 @@ bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
 }
 // The lookahead rule of triangle_block (see the grammar): does the block start with vertices?
 bool Parser::starts_vertex_list() {
-    if (!starts_expression(tok_.kind)) return false;
+    if (!starts_expression(tok_.kind) || starts_object_value(tok_.kind)) return false;
     if (!check(TokenKind::Ident) && !check(TokenKind::Material)) return true;
     switch (peek().kind) {
         case TokenKind::Number:
@@ -463,7 +472,8 @@ ExprList Parser::parse_value_list(const Item& item) {
         // skipped and the block reader reports the unknown property with wsd's spelling.
         return keep(std::vector<Expr*>{skip_braced_block()});
     }
-    if (!starts_expression(tok_.kind)) {
+    // No property takes an object value: an object keyword there starts the next statement.
+    if (!starts_expression(tok_.kind) || starts_object_value(tok_.kind)) {
         if (item.name.empty())
             error_here("expected a value, found " + found());
         else
