@@ -10,6 +10,7 @@
 // block was evaluated. Where what gives it is an instance or a CSG, the spec says so with
 // kInheritMaterial, so a prototype or a CSG is shared by every material it is added with.
 #include <map>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "lang/object_value.h"
@@ -111,7 +112,7 @@ private:
 
     // Instances of `target` (a group or a mesh) in the world: its prototype, and its nested ones.
     void instantiate(const ObjectPtr& target, const render::Mat4& m, const Inherit& inherit) {
-        const bool inherited = inherit.gives();
+        const bool inherited = inherit.gives() && takes_material(*target);
         const Prototype& p = prototype(target, inherited);
         if (p.index) {
             render::ShapeSpec s;
@@ -126,6 +127,28 @@ private:
         for (const SubInstance& sub : p.subs)
             instantiate(sub.target, m * sub.transform,
                         sub.inherit.from == Inherit::From::Container ? inherit : sub.inherit);
+    }
+
+    // Whether some surface of `v` has no material from `v` itself (so that what adds it matters):
+    // a value that gives all its own needs one prototype, whatever it is added with.
+    bool takes_material(const ObjectValue& v) {
+        if (v.material) return false;
+        if (auto it = takes_material_.find(&v); it != takes_material_.end()) return it->second;
+        bool takes = false;
+        switch (v.kind) {
+            case ObjectKind::Leaf:
+                takes = true;
+                break;
+            case ObjectKind::Instance:
+                takes = takes_material(*v.target);
+                break;
+            case ObjectKind::Group:
+            case ObjectKind::Csg:
+                for (const ObjectPtr& m : v.members) takes = takes || takes_material(*m);
+                break;
+        }
+        takes_material_.emplace(&v, takes);
+        return takes;
     }
 
     const Prototype& prototype(const ObjectPtr& target, bool inherited) {
@@ -268,6 +291,7 @@ private:
     std::map<Key, Prototype> prototypes_;  // node-based: references stay valid while it grows
     std::map<Key, Csg> csgs_;
     std::vector<ObjectPtr> kept_;
+    std::unordered_map<const ObjectValue*, bool> takes_material_;  // of values kept alive in kept_
     std::unordered_set<const ObjectValue*> reported_;
 };
 
