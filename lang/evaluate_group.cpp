@@ -19,13 +19,17 @@ std::optional<std::string> mesh_closedness_problem(const render::MeshData& mesh)
     auto key = [](uint32_t a, uint32_t b) { return (uint64_t{a} << 32) | b; };
     for (const glm::uvec3& f : mesh.faces)
         for (int i = 0; i < 3; ++i) ++directed[key(f[i], f[(i + 1) % 3])];
-    for (const auto& [edge, count] : directed) {
-        const auto a = static_cast<uint32_t>(edge >> 32), b = static_cast<uint32_t>(edge);
-        const auto reverse = directed.find(key(b, a));
-        const std::string name =
-            "the edge between vertices " + std::to_string(a) + " and " + std::to_string(b);
-        if (count > 1) return name + " is run along the same way by " + std::to_string(count) + " faces";
-        if (reverse == directed.end()) return name + " belongs to only one face (the mesh has a hole)";
+    // In face order, so that the edge named is the same on every machine.
+    for (const glm::uvec3& f : mesh.faces) {
+        for (int i = 0; i < 3; ++i) {
+            const uint32_t a = f[i], b = f[(i + 1) % 3];
+            const std::string name =
+                "the edge between vertices " + std::to_string(a) + " and " + std::to_string(b);
+            if (const uint32_t count = directed[key(a, b)]; count > 1)
+                return name + " is run along the same way by " + std::to_string(count) + " faces";
+            if (directed.find(key(b, a)) == directed.end())
+                return name + " belongs to only one face (the mesh has a hole)";
+        }
     }
     return std::nullopt;
 }

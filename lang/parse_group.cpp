@@ -120,10 +120,10 @@ Stmt* Parser::parse_instance() {
     s->block.open = s->block.close = span_of(tok_);
     if (check(TokenKind::LBrace)) {
         // POV-Ray's `object { NAME ... }`: the value is written before the block in wsd.
+        const std::string name = peek().kind == TokenKind::Ident ? std::string(lexeme(peek())) : "NAME";
         if (Diagnostic* d = error_here("expected an object value after 'object', found '{'"))
-            d->help.push_back(
-                "write the value before the block: 'object NAME { translate ... }' (POV-Ray's 'object { "
-                "NAME ... }')");
+            d->help.push_back("the value comes before the block: write 'object " + name +
+                              " { ... }' (POV-Ray's spelling is 'object { " + name + " ... }')");
     } else {
         s->value = parse_expression();
         if (!panic_) {
