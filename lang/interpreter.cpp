@@ -321,7 +321,11 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         return;
     }
     scopes_[scope_count_ - 1].included.push_back({key, at});
-    const size_t objects_before = scene_.primitives();
+    // Objects go to the scene (shapes or instances) or to the body being evaluated.
+    auto objects_added = [this] {
+        return scene_.primitives() + scene_.instances() + (members_ ? members_->size() : 0);
+    };
+    const size_t objects_before = objects_added();
     const uint32_t file = sources_.add(path, std::move(text));
     diags_.push_include(at);
     const size_t errors_before = diags_.error_count();
@@ -336,7 +340,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         chain_ = chain_->parent;
         include_stack_.pop_back();
         include_stack_files_.pop_back();
-        adds_objects_[key] = scene_.primitives() > objects_before;
+        adds_objects_[key] = objects_added() > objects_before;
     } else {
         abort();  // its definitions are missing: running on would only cascade
     }
