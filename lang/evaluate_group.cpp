@@ -2,6 +2,7 @@
 // with its material optional, since what encloses it may give one), group and CSG bodies run as
 // scopes whose object statements add members, `object EXPR { ... }` instances, the solid check of
 // CSG members, and delivery of a value where objects go (the body being evaluated, or the scene).
+#include <algorithm>
 #include <unordered_map>
 
 #include "lang/interpreter.h"
@@ -163,7 +164,9 @@ ObjectPtr Interpreter::group_value(const GroupStmt& stmt) {
     for (const ObjectPtr& m : value->members) {
         value->objects += m->objects;
         value->triangles += m->triangles;
+        value->depth = std::max(value->depth, m->depth + 1);
     }
+    if (!check_depth(*value)) return nullptr;
     if (value->kind == ObjectKind::Csg) {
         value->objects = 1;  // one solid
         if (!check_csg_members(*value, word)) return nullptr;
@@ -192,6 +195,15 @@ bool Interpreter::check_csg_members(const ObjectValue& csg, const std::string& w
     return ok;
 }
 
+bool Interpreter::check_depth(const ObjectValue& value) {
+    if (value.depth <= kMaxObjectDepth) return true;
+    diags_.error(value.keyword, "object values nested too deep (the limit is " +
+                                    std::to_string(kMaxObjectDepth) +
+                                    " levels of groups, CSG and instances)");
+    abort();
+    return false;
+}
+
 ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     std::optional<Value> target = eval(*stmt.value);
     BlockReader items = eval_block(block_table("object"), stmt.block, stmt.keyword);
@@ -214,6 +226,8 @@ ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     value->transform = compose_transforms(items.transforms());
     value->objects = value->target->objects;
     value->triangles = value->target->triangles;
+    value->depth = value->target->depth + 1;
+    if (!check_depth(*value)) return nullptr;
     return value;
 }
 

@@ -130,6 +130,7 @@ private:
     ObjectPtr leaf_value(const ObjectStmt& stmt);
     ObjectPtr group_value(const GroupStmt& stmt);
     ObjectPtr instance_value(const InstanceStmt& stmt);
+    bool check_depth(const ObjectValue& value);
     bool check_csg_members(const ObjectValue& csg, const std::string& word);
     std::optional<Value> eval_object(const ObjectExpr& expr);
     // Adds a value where objects go now: the body being evaluated, or the scene.

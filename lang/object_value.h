@@ -17,6 +17,10 @@ namespace wsd::lang {
 
 enum class ObjectKind : uint8_t { Leaf, Group, Csg, Instance };
 
+// Values nest through names and calls beyond what one file's syntax can nest; lowering walks them
+// recursively, so their depth is bounded where they are made.
+inline constexpr int kMaxObjectDepth = 1000;
+
 // The `default_material` binding in scope where a leaf's block was evaluated: its material when
 // neither it nor anything enclosing it gives one.
 struct FallbackMaterial {
@@ -42,6 +46,7 @@ struct ObjectValue {
     render::Mat4 transform{1.0};  // group, CSG, instance: their own transforms, composed
     // Counted as `wsd check` counts (as instanced): leaf objects and triangles.
     size_t objects = 0, triangles = 0;
+    int depth = 1;  // levels of groups, CSG and instances down to its deepest leaf
 
     bool is_mesh() const { return kind == ObjectKind::Leaf && leaf->shape.kind == render::ShapeKind::Mesh; }
 };

@@ -319,3 +319,21 @@ TEST_CASE("the instance limit is its own, apart from stored primitives", "[objec
     CHECK(over->errors() ==
           std::vector<std::string>{"7:20: the scene has more than 10 instances (the limit)"});
 }
+
+TEST_CASE("object values nest at most 1000 levels deep", "[objects]") {
+    auto chain = [](int levels) {
+        std::string text = kHead + "let v0 = sphere { center <0, 0, 0>  radius 1  material red }\n";
+        for (int i = 1; i < levels; ++i)
+            text += "let v" + std::to_string(i) + " = object v" + std::to_string(i - 1) + " { }\n";
+        return text + "object v" + std::to_string(levels - 1) + " { }\n";
+    };
+    auto ok = load_text(chain(999));
+    CHECK(ok->errors().empty());
+    REQUIRE(ok->scene);
+    CHECK(ok->scene->spec.shapes.size() == 1);
+    auto deep = load_text(chain(1000));
+    CHECK(deep->errors() ==
+          std::vector<std::string>{
+              "1005:1: object values nested too deep (the limit is 1000 levels of groups, CSG "
+              "and instances)"});
+}
