@@ -236,7 +236,7 @@ void Interpreter::deliver(const ObjectPtr& value, Span added_by) {
         members_->push_back(value);
         return;
     }
-    scene_.add_object_value(value, added_by, chain_, diags_);
+    scene_.add_object_value(value, added_by, diags_);
     if (scene_.primitives() > limits_.primitives) {
         diags_.error(added_by, "the scene has more than " + std::to_string(limits_.primitives) +
                                    " primitives (the limit; a mesh counts its triangles, stored once per "

@@ -150,7 +150,7 @@ public:
     // (lang/lower_instances.cpp): a group is flattened into world shapes, `object` of a group or a
     // mesh adds instances of one prototype per distinct value, CSG becomes one solid. A surface with
     // no material at all is an error at its object's keyword, with a note at `added_by`.
-    void add_object_value(const ObjectPtr& value, Span added_by, IncludeChain chain, Diagnostics& diags);
+    void add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags);
     size_t primitives() const { return primitives_; }  // stored primitives (distinct geometry)
     size_t instances() const { return instances_; }
     const render::SceneSpec& spec() const { return scene_.spec; }

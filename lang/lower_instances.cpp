@@ -10,6 +10,7 @@
 // block was evaluated. Where what gives it is an instance or a CSG, the spec says so with
 // kInheritMaterial, so a prototype or a CSG is shared by every material it is added with.
 #include <map>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -32,7 +33,8 @@ Inherit own_or(const ObjectValue& v, const Inherit& outer) {
 
 // An `object` nested in an instanced group: placed again wherever that group is placed.
 struct SubInstance {
-    ObjectPtr target;  // a group or a mesh
+    ObjectPtr instance;  // the `object` that adds it (where its instances are reported)
+    ObjectPtr target;    // a group or a mesh
     render::Mat4 transform;
     Inherit inherit;  // Container: the enclosing instance's material
 };
@@ -50,11 +52,9 @@ class ObjectLowering {
 public:
     explicit ObjectLowering(SceneBuilder& b) : b_(b) {}
 
-    void add(const ObjectPtr& value, Span added_by, IncludeChain chain, Diagnostics& diags) {
+    void add(const ObjectPtr& value, Span added_by, Diagnostics& diags) {
         diags_ = &diags;
         added_by_ = added_by;
-        chain_ = std::move(chain);
-        instance_tag_.reset();
         b_.scene_.summary.objects += value->objects;
         b_.scene_.summary.triangles += value->triangles;
         walk(value, render::Mat4(1.0), Inherit{}, Out{&b_.scene_.spec.shapes, nullptr});
@@ -104,14 +104,15 @@ private:
         if (target->kind == ObjectKind::Csg || (target->kind == ObjectKind::Leaf && !target->is_mesh())) {
             walk(target, placed, given, out);  // one shape: a copy costs what an instance would
         } else if (out.subs) {
-            out.subs->push_back({target, placed, given});
+            out.subs->push_back({instance, target, placed, given});
         } else {
-            instantiate(target, placed, given);
+            instantiate(*instance, target, placed, given);
         }
     }
 
     // Instances of `target` (a group or a mesh) in the world: its prototype, and its nested ones.
-    void instantiate(const ObjectPtr& target, const render::Mat4& m, const Inherit& inherit) {
+    void instantiate(const ObjectValue& instance, const ObjectPtr& target, const render::Mat4& m,
+                     const Inherit& inherit) {
         const bool inherited = inherit.gives() && takes_material(*target);
         const Prototype& p = prototype(target, inherited);
         if (p.index) {
@@ -120,12 +121,12 @@ private:
             s.prototype = *p.index;
             s.object_to_world = m;
             s.material = inherited ? b_.material_index(inherit.material) : render::kInheritMaterial;
-            s.tag = instance_tag();
+            s.tag = instance_tag(instance);
             b_.scene_.spec.shapes.push_back(std::move(s));
             ++b_.instances_;
         }
         for (const SubInstance& sub : p.subs)
-            instantiate(sub.target, m * sub.transform,
+            instantiate(*sub.instance, sub.target, m * sub.transform,
                         sub.inherit.from == Inherit::From::Container ? inherit : sub.inherit);
     }
 
@@ -273,21 +274,19 @@ private:
         return r;
     }
 
-    uint32_t instance_tag() {
-        if (!instance_tag_) {
-            SpanRecord r;
-            r.span = added_by_;
-            r.chain = chain_;
-            instance_tag_ = b_.record(std::move(r));
-        }
-        return *instance_tag_;
+    // One span record per `object` statement (and include chain), however many instances it adds.
+    uint32_t instance_tag(const ObjectValue& instance) {
+        const auto key = std::make_tuple(instance.keyword.file, instance.keyword.begin, instance.chain.get());
+        if (auto it = instance_tags_.find(key); it != instance_tags_.end()) return it->second;
+        const uint32_t tag = b_.record(record_of(instance));
+        instance_tags_.emplace(key, tag);
+        return tag;
     }
 
     SceneBuilder& b_;
     Diagnostics* diags_ = nullptr;
     Span added_by_;
-    IncludeChain chain_;
-    std::optional<uint32_t> instance_tag_;
+    std::map<std::tuple<uint32_t, uint32_t, const IncludeSite*>, uint32_t> instance_tags_;
     std::map<Key, Prototype> prototypes_;  // node-based: references stay valid while it grows
     std::map<Key, Csg> csgs_;
     std::vector<ObjectPtr> kept_;
@@ -309,10 +308,9 @@ void SceneBuilder::drop_object_caches() {
     objects_.reset();
 }
 
-void SceneBuilder::add_object_value(const ObjectPtr& value, Span added_by, IncludeChain chain,
-                                    Diagnostics& diags) {
+void SceneBuilder::add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags) {
     if (!objects_) objects_ = std::make_unique<ObjectLowering>(*this);
-    objects_->add(value, added_by, std::move(chain), diags);
+    objects_->add(value, added_by, diags);
 }
 
 const char* shape_word(render::ShapeKind kind) {

@@ -337,3 +337,19 @@ TEST_CASE("object values nest at most 1000 levels deep", "[objects]") {
               "1005:1: object values nested too deep (the limit is 1000 levels of groups, CSG "
               "and instances)"});
 }
+
+TEST_CASE("an object statement in a group written as a statement adds a world instance", "[objects]") {
+    auto l = load(
+        "let tree = group { box { min <0, 0, 0>  max <1, 1, 1> } }\n"
+        "group { object tree { translate <1, 0, 0> }  rotate <0, 90, 0>  translate <0, 1, 0>  material red "
+        "}\n");
+    const auto& spec = spec_of(*l);
+    REQUIRE(spec.shapes.size() == 1);
+    const ShapeSpec& s = spec.shapes[0];
+    CHECK(s.kind == ShapeKind::Instance);
+    CHECK(colour(spec, s.material) == "red");  // the enclosing group's, through the instance
+    // translate <1, 0, 0>, then a quarter turn about y (x goes to -z), then translate <0, 1, 0>.
+    CHECK(apply(s.object_to_world, {0, 0, 0}) == glm::dvec3(0, 1, -1));
+    REQUIRE(l->scene->shape_spans.size() == 1);
+    CHECK(where(l->sources, l->scene->shape_spans[0]) == "6:9");  // the `object` that added it
+}
