@@ -211,9 +211,12 @@ ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     if (!target->is(ValueType::Object)) {
         Diagnostic& d = diags_.error(stmt.value->span, std::string("'object' needs an object value, found ") +
                                                            type_name(target->type()));
-        d.help.push_back(
-            "an object value is an object block, e.g. 'let ball = sphere { ... }', then 'object ball { ... "
-            "}'");
+        if (target->is(ValueType::List))
+            d.help.push_back("to add every object of a list, write 'for o in LIST { object o { } }'");
+        else
+            d.help.push_back(
+                "an object value is an object block, e.g. 'let ball = sphere { ... }', then "
+                "'object ball { ... }'");
         return nullptr;
     }
     if (!items.ok()) return nullptr;

@@ -353,3 +353,18 @@ TEST_CASE("an object statement in a group written as a statement adds a world in
     REQUIRE(l->scene->shape_spans.size() == 1);
     CHECK(where(l->sources, l->scene->shape_spans[0]) == "6:9");  // the `object` that added it
 }
+
+TEST_CASE("the primitive limit counts stored primitives: a prototype once", "[objects]") {
+    Limits limits;
+    limits.primitives = 10;
+    // 4 triangles stored once, however often the mesh is instanced.
+    auto shared = evaluate_text(
+        kHead + "let t = " + kTetra + " material red }\n" + "for i in 0 .. 100 { object t { } }\n", limits);
+    CHECK(shared->errors().empty());
+    // A group written as a statement is stored once per statement: the third crosses the limit.
+    auto flat =
+        evaluate_text(kHead + "for i in 0 .. 3 { group { " + kTetra + " material red } } }\n", limits);
+    CHECK(flat->errors() ==
+          std::vector<std::string>{"5:19: the scene has more than 10 primitives (the limit; a "
+                                   "mesh counts its triangles, stored once per distinct value)"});
+}
