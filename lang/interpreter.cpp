@@ -1,8 +1,9 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
 // (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
-// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene. Expressions are
-// in evaluate.cpp.
+// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene, or made object
+// values and added to the body being evaluated (evaluate_group.cpp). Expressions are in
+// evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>

@@ -1,6 +1,8 @@
 // The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
 // expressions into values and blocks into evaluated blocks (checked against their tables as they
-// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Errors go to
+// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Object
+// statements deliver where objects go: the scene, or the group or CSG body being evaluated (whose
+// value they build: lang/object_value.h). Errors go to
 // Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
 // many errors".
 #pragma once

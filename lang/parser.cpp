@@ -1,7 +1,8 @@
 // The recursive-descent parser, statements and blocks: one function per production of
 // grammar/wsd.ebnf (quoted above it), panic-mode recovery (an error silences further errors until
 // the parser resynchronizes at the next statement), and a nesting counter instead of a deep
-// stack. Expressions, vectors and lists are in parse_expression.cpp.
+// stack. Expressions, vectors and lists are in parse_expression.cpp; group and CSG bodies, `object`
+// and object blocks written as values in parse_group.cpp.
 #include <limits>
 
 #include "lang/lower.h"

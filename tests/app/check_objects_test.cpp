@@ -17,7 +17,8 @@ TEST_CASE("check counts instances as instanced and says what is stored", "[cli][
                "for i in 0 .. 1000 { object pair { translate <i, 0, 0>  material red } }\n");
     const RunResult r = run_wsd(dir, "check many.wsdi");
     CHECK(r.status == 0);
-    CHECK(r.out ==
-          "many.wsdi: ok \xE2\x80\x94 2001 objects, 4000 triangles, 0 lights, 1 material (stored: 3 shapes, 4 "
-          "triangles)\n");
+    CHECK(
+        r.out ==
+        "many.wsdi: ok \xE2\x80\x94 2001 objects, 4000 triangles, 0 lights, 1 material (stored: 3 shapes, 4 "
+        "triangles)\n");
 }
