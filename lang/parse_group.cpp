@@ -76,6 +76,7 @@ StmtList Parser::parse_group_body(GroupStmt& group) {
     in_vector_ = false;
     const std::string word = group_keyword(group.group_kind);
     std::vector<Stmt*> body;
+    ++group_bodies_;
     while (!check(TokenKind::Eof) && !check(TokenKind::RBrace)) {
         if (starts_group_item()) {
             auto* item = stmt<ItemStmt>(StmtKind::Item, span_of(tok_));
@@ -108,6 +109,7 @@ StmtList Parser::parse_group_body(GroupStmt& group) {
         group.close = {file_, tok_.begin, tok_.begin};
         unclosed(open, "expected '}' to close the " + word + " body, found " + found());
     }
+    --group_bodies_;
     in_vector_ = saved_vector;
     leave();
     return keep(body);

@@ -174,6 +174,11 @@ Stmt* Parser::parse_statement() {
             else if (!match.empty())
                 help = "did you mean '" + match + "'?";
         }
+        if (group_bodies_ > 0 && (check(TokenKind::Material) || lexeme(tok_) == "scale" ||
+                                  lexeme(tok_) == "rotate" || lexeme(tok_) == "translate"))
+            help =
+                "a group's items (material, scale, rotate, translate) are written directly in its body, not "
+                "inside 'if' or 'for'";
         if (Diagnostic* d = error_here("expected a statement, found " + found()); d && !help.empty())
             d->help.push_back(help);
     }

@@ -173,6 +173,7 @@ private:
     bool bailed_ = false;     // nesting limit or too many errors: the parse winds down
     bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
     int depth_ = 0;
+    int group_bodies_ = 0;  // group and CSG bodies being parsed, around the current token
 };
 
 }  // namespace wsd::lang::detail
