@@ -16,10 +16,11 @@ using wsd::render::ShapeSpec;
 
 namespace {
 
-const std::string kHead = std::string(kCamera) +
-                          "let red = material { color <1, 0, 0> }\n"
-                          "let blue = material { color <0, 0, 1> }\n"
-                          "let green = material { color <0, 1, 0> }\n";
+const std::string kHead =
+    std::string(kCamera) +
+    "let red = material { color <1, 0, 0> }\n"
+    "let blue = material { color <0, 0, 1> }\n"
+    "let green = material { color <0, 1, 0> }  let tri = triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }\n";
 
 // A closed tetrahedron, consistently oriented.
 const std::string kTetra =
@@ -256,8 +257,8 @@ TEST_CASE("a CSG instanced under a material shares its members, which inherit", 
 
 TEST_CASE("CSG members must be solids", "[objects]") {
     auto errors = [](const std::string& body) { return load(body)->errors(); };
-    CHECK(errors("union { sphere { center <0, 0, 0>  radius 1 }  disc { }  material red }\n") ==
-          std::vector<std::string>{"5:48: 'disc' is not a solid; CSG needs closed shapes"});
+    CHECK(errors("union { sphere { center <0, 0, 0>  radius 1 }  object tri { }  material red }\n") ==
+          std::vector<std::string>{"5:48: 'triangle' is not a solid; CSG needs closed shapes"});
     CHECK(errors("intersection { triangle { <0, 0, 0>, <1, 0, 0>, <0, 1, 0> }  material red }\n") ==
           std::vector<std::string>{"5:16: 'triangle' is not a solid; CSG needs closed shapes"});
     CHECK(errors("let g = group { sphere { center <0, 0, 0>  radius 1 } }\n"
@@ -269,7 +270,7 @@ TEST_CASE("CSG members must be solids", "[objects]") {
     CHECK(errors("union { " + kTetra + "}  material red }\n").empty());
     CHECK(errors("difference { }\n") ==
           std::vector<std::string>{"5:1: empty 'difference': CSG needs at least one solid"});
-    auto l = load("union { sphere { center <0, 0, 0>  radius 1 }  disc { }  material red }\n");
+    auto l = load("union { sphere { center <0, 0, 0>  radius 1 }  object tri { }  material red }\n");
     REQUIRE(!l->diags.all().empty());
     const Diagnostic& d = l->diags.all()[0];
     REQUIRE(d.notes.size() == 1);
