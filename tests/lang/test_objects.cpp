@@ -369,3 +369,20 @@ TEST_CASE("the primitive limit counts stored primitives: a prototype once", "[ob
           std::vector<std::string>{"5:19: the scene has more than 10 primitives (the limit; a "
                                    "mesh counts its triangles, stored once per distinct value)"});
 }
+
+TEST_CASE("an object of a closed mesh in a CSG is a member copy, not an instance", "[objects]") {
+    auto l =
+        load("let tetra = " + kTetra + " }\n" +
+             "intersection { object tetra { translate <0, 0, 1> }  sphere { center <0, 0, 0>  radius 1 }  "
+             "material red }\n");
+    const auto& spec = spec_of(*l);
+    CHECK(spec.prototypes.empty());
+    REQUIRE(spec.shapes.size() == 1);
+    const auto& members = spec.shapes[0].csg->members;
+    REQUIRE(members.size() == 2);
+    CHECK(members[0].kind == ShapeKind::Mesh);
+    CHECK(apply(members[0].object_to_world, {0, 0, 0}) == glm::dvec3(0, 0, 1));
+    CHECK(members[0].material == kInheritMaterial);
+    CHECK(l->scene->summary.triangles == 4);
+    CHECK(l->scene->summary.stored_triangles == 4);
+}
