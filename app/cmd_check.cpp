@@ -51,7 +51,12 @@ int run_check(const CheckArgs& args) {
             const lang::CheckSummary& s = scene->summary;
             std::cout << display_path(path) << ": ok \u2014 " << counted(s.objects, "object") << ", "
                       << counted(s.triangles, "triangle") << ", " << counted(s.lights, "light") << ", "
-                      << counted(s.materials, "material") << "\n";
+                      << counted(s.materials, "material");
+            // Instances share geometry: what is stored, beside what is counted as instanced.
+            if (s.instances > 0)
+                std::cout << " (stored: " << counted(s.stored_shapes, "shape") << ", "
+                          << counted(s.stored_triangles, "triangle") << ")";
+            std::cout << "\n";
             if (args.effects) print_effects(*scene, sources, std::cout);
         }
         std::cout << std::flush;

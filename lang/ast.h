@@ -86,6 +86,7 @@ enum class ExprKind : uint8_t {
     Image,       // ImageExpr (`image "file.png"`)
     Checker,     // BlockExpr (`checker { ... }`)
     Perlin,      // BlockExpr (`perlin { ... }`)
+    Object,      // ObjectExpr: an object block written as a value
     Bad,         // Expr alone: a placeholder after a syntax error (the program is never run)
 };
 
@@ -169,6 +170,12 @@ struct BlockExpr : Expr {  // Material, Checker, Perlin
 struct ImageExpr : Expr {
     Expr* path;
 };
+struct Stmt;
+// An object block (sphere, ..., `group`, CSG, `object EXPR { ... }`) where an expression is
+// expected: the same node as the statement, whose value it is instead of being added.
+struct ObjectExpr : Expr {
+    Stmt* object;  // an ObjectStmt (never settings, camera or light), GroupStmt or InstanceStmt
+};
 
 // ---- blocks -------------------------------------------------------------------------------------
 
@@ -190,8 +197,21 @@ struct Block {
 
 // ---- statements ---------------------------------------------------------------------------------
 
-enum class StmtKind : uint8_t { Let, For, If, Include, Object, Bad };
-enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh, Cylinder, Cone, Torus, Disc };
+enum class StmtKind : uint8_t { Let, For, If, Include, Object, Group, Instance, Item, Bad };
+enum class BlockKind : uint8_t {
+    Settings,
+    Camera,
+    Light,
+    Sphere,
+    Box,
+    Triangle,
+    Plane,
+    Mesh,
+    Cylinder,
+    Cone,
+    Torus,
+    Disc
+};
 
 // The common head of every statement node; `keyword` is its first token.
 struct Stmt : Downcast<Stmt> {
@@ -234,6 +254,39 @@ struct ObjectStmt : Stmt {
     Span name_span;
     Block block;
 };
+
+enum class GroupKind : uint8_t { Group, Union, Intersection, Difference };
+// `group { ... }`, `union { ... }`, `intersection { ... }`, `difference { ... }`: a body of
+// statements and ItemStmts (material, scale, rotate, translate), in the order written.
+struct GroupStmt : Stmt {
+    GroupKind group_kind;
+    Span open, close;
+    StmtList body;
+};
+// `object EXPR { items }`: an instance of an object value.
+struct InstanceStmt : Stmt {
+    Expr* value;  // never null (Bad after a syntax error)
+    Block block;
+};
+// One item of a group or CSG body, among its statements.
+struct ItemStmt : Stmt {
+    Item item;
+};
+
+// The keyword of a group kind ("group", "union", ...).
+inline const char* group_keyword(GroupKind kind) {
+    switch (kind) {
+        case GroupKind::Group:
+            return "group";
+        case GroupKind::Union:
+            return "union";
+        case GroupKind::Intersection:
+            return "intersection";
+        case GroupKind::Difference:
+            return "difference";
+    }
+    return "group";
+}
 
 struct Program {
     uint32_t file = 0;

@@ -125,6 +125,7 @@ private:
     }
     void expr(const Expr& e);
     void block(const Block& b);
+    void item(const Item& it);
     void packed(const PackedListExpr& e);
     void binary(const BinaryExpr& e);
     void nested(const Expr& e);
@@ -197,18 +198,38 @@ void Printer::statement(const Stmt& s) {
             close();
             break;
         }
+        case StmtKind::Group: {
+            const auto& group = s.as<GroupStmt>();
+            open(group_keyword(group.group_kind), s.span);
+            for (const Stmt* b : group.body) statement(*b);
+            close();
+            break;
+        }
+        case StmtKind::Instance: {
+            const auto& instance = s.as<InstanceStmt>();
+            open("object", s.span);
+            expr(*instance.value);
+            block(instance.block);
+            close();
+            break;
+        }
+        case StmtKind::Item:
+            item(s.as<ItemStmt>().item);
+            break;
         case StmtKind::Bad:
             leaf("bad", s.span);
             break;
     }
 }
 
+void Printer::item(const Item& it) {
+    open(join("item", it.name), it.name_span);
+    for (const Expr* v : it.values) expr(*v);
+    close();
+}
+
 void Printer::block(const Block& b) {
-    for (const Item& item : b.items) {
-        open(join("item", item.name), item.name_span);
-        for (const Expr* v : item.values) expr(*v);
-        close();
-    }
+    for (const Item& it : b.items) item(it);
 }
 
 void Printer::expr(const Expr& e) {
@@ -239,6 +260,9 @@ void Printer::expr(const Expr& e) {
             return;
         case ExprKind::List:
             children("list", e.span, e.as<ListExpr>().elements);
+            return;
+        case ExprKind::Object:
+            statement(*e.as<ObjectExpr>().object);
             return;
         case ExprKind::Call: {
             const auto& call = e.as<CallExpr>();

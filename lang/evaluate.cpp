@@ -56,6 +56,8 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
             return eval_binary(expr.as<BinaryExpr>());
         case ExprKind::Call:
             return eval_call(expr.as<CallExpr>());
+        case ExprKind::Object:
+            return eval_object(expr.as<ObjectExpr>());
         case ExprKind::Member:
             return eval_member(expr.as<MemberExpr>());
         case ExprKind::Index:
@@ -219,7 +221,8 @@ std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a
                                            type_name(b.type()) + " using " + sym);
             return std::nullopt;
         }
-        if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture)) {
+        if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture) ||
+            a.is(ValueType::Object)) {
             diags_.error(step.op_span,
                          std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
             return std::nullopt;

@@ -15,24 +15,28 @@ BlockReader Interpreter::eval_block(const BlockTable& table, const Block& block,
             reader.failed();
             break;
         }
-        // Free again before any value is evaluated (a nested block's evaluation reuses it).
-        value_spans_.clear();
-        for (const Expr* e : item.values) value_spans_.push_back(e->span);
-        const ItemRead read = reader.admit(item.name, item.name_span, value_spans_);
-        for (const Expr* e : item.values) {
-            if (read == ItemRead::Skip) break;
-            if (read == ItemRead::Evaluate) {
-                reader.accept({eval(*e), e->span, false});
-            } else if (e->kind == ExprKind::Ident) {
-                const std::string_view word = e->as<IdentExpr>().name;
-                reader.accept({Value::make_string(std::string(word), e->span), e->span, true});
-            } else {
-                reader.accept({std::nullopt, e->span, false});
-            }
-        }
-        reader.end_item();
+        eval_item(reader, item);
     }
     return reader;
+}
+
+void Interpreter::eval_item(BlockReader& reader, const Item& item) {
+    // Free again before any value is evaluated (a nested block's evaluation reuses it).
+    value_spans_.clear();
+    for (const Expr* e : item.values) value_spans_.push_back(e->span);
+    const ItemRead read = reader.admit(item.name, item.name_span, value_spans_);
+    for (const Expr* e : item.values) {
+        if (read == ItemRead::Skip) break;
+        if (read == ItemRead::Evaluate) {
+            reader.accept({eval(*e), e->span, false});
+        } else if (e->kind == ExprKind::Ident) {
+            const std::string_view word = e->as<IdentExpr>().name;
+            reader.accept({Value::make_string(std::string(word), e->span), e->span, true});
+        } else {
+            reader.accept({std::nullopt, e->span, false});
+        }
+    }
+    reader.end_item();
 }
 
 std::optional<Value> Interpreter::eval_block_expr(const BlockExpr& expr) {

@@ -1,8 +1,9 @@
 // The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
 // lists, against a global iteration budget), if (untaken branches are never evaluated), include
 // (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
-// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene. Expressions are
-// in evaluate.cpp.
+// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene, or made object
+// values and added to the body being evaluated (evaluate_group.cpp). Expressions are in
+// evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>
@@ -35,7 +36,18 @@ bool read_file(const std::string& path, std::string& out, std::string& reason) {
 
 using render::quoted;
 
+bool is_scene_element(const Stmt& s) {
+    if (s.kind != StmtKind::Object) return false;
+    const BlockKind kind = s.as<ObjectStmt>().block_kind;
+    return kind == BlockKind::Settings || kind == BlockKind::Camera || kind == BlockKind::Light;
+}
+
 }  // namespace
+
+std::string_view Interpreter::keyword_text(const Stmt& s) const {
+    return std::string_view(sources_.file(s.keyword.file).text)
+        .substr(s.keyword.begin, s.keyword.end - s.keyword.begin);
+}
 
 Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
     ok_ = ++in_.depth_ <= in_.limits_.eval_depth;
@@ -170,8 +182,12 @@ void Interpreter::exec(const Stmt& stmt) {
             exec_include(stmt.as<IncludeStmt>());
             break;
         case StmtKind::Object:
-            exec_object(stmt.as<ObjectStmt>());
+        case StmtKind::Group:
+        case StmtKind::Instance:
+            exec_object(stmt);
             break;
+        case StmtKind::Item:
+            break;  // read by the group or CSG body that holds it
         case StmtKind::Bad:
             break;  // the parser reported it
     }
@@ -306,7 +322,11 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         return;
     }
     scopes_[scope_count_ - 1].included.push_back({key, at});
-    const size_t objects_before = scene_.primitives();
+    // Objects go to the scene (shapes or instances) or to the body being evaluated.
+    auto objects_added = [this] {
+        return scene_.primitives() + scene_.instances() + (members_ ? members_->size() : 0);
+    };
+    const size_t objects_before = objects_added();
     const uint32_t file = sources_.add(path, std::move(text));
     diags_.push_include(at);
     const size_t errors_before = diags_.error_count();
@@ -321,7 +341,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         chain_ = chain_->parent;
         include_stack_.pop_back();
         include_stack_files_.pop_back();
-        adds_objects_[key] = scene_.primitives() > objects_before;
+        adds_objects_[key] = objects_added() > objects_before;
     } else {
         abort();  // its definitions are missing: running on would only cascade
     }
@@ -329,7 +349,20 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
     programs_.push_back(std::move(program));
 }
 
-void Interpreter::exec_object(const ObjectStmt& stmt) {
+void Interpreter::exec_object(const Stmt& added) {
+    if (members_ && is_scene_element(added)) {
+        const std::string body = group_keyword(body_->group_kind);
+        Diagnostic& d = diags_.error(
+            added.keyword, "'" + std::string(keyword_text(added)) + "' cannot be in a " + body + " body");
+        d.notes.push_back({body_->keyword, "in this '" + body + "'"});
+        d.help.push_back("settings, the camera and lights belong to the scene: write them outside");
+        return;
+    }
+    if (members_ || added.kind != StmtKind::Object) {
+        if (ObjectPtr value = object_value(added)) deliver(value, added.keyword);
+        return;
+    }
+    const auto& stmt = added.as<ObjectStmt>();
     const BlockTable* table = statement_table(stmt, diags_);
     if (!table) return;
     std::optional<Span>* first = nullptr;  // a settings or camera block

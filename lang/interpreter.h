@@ -1,6 +1,8 @@
 // The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
 // expressions into values and blocks into evaluated blocks (checked against their tables as they
-// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Errors go to
+// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Object
+// statements deliver where objects go: the scene, or the group or CSG body being evaluated (whose
+// value they build: lang/object_value.h). Errors go to
 // Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
 // many errors".
 #pragma once
@@ -23,8 +25,9 @@ namespace wsd::lang {
 class ParamTable;
 
 struct Limits {
-    uint64_t loop_iterations = 100'000'000;  // in total
-    size_t primitives = render::kMaxPrimitives;
+    uint64_t loop_iterations = 100'000'000;      // in total
+    size_t primitives = render::kMaxPrimitives;  // stored: distinct geometry
+    size_t instances = render::kMaxInstances;
     int include_depth = 64;
     // The parser limits nesting to 256 levels a file (a chain of one operator level is one
     // node); this guards the evaluator's own recursion over the whole scene, where includes
@@ -90,7 +93,8 @@ private:
     void exec_for(const ForStmt& stmt);
     void exec_if(const IfStmt& stmt);
     void exec_include(const IncludeStmt& stmt);
-    void exec_object(const ObjectStmt& stmt);
+    // Every statement that adds an object (a block, a group or CSG, an `object`) comes here.
+    void exec_object(const Stmt& stmt);
     bool run_loop_body(const ForStmt& stmt, const Value& item);
     bool take_iterations(double count, Span at);
 
@@ -121,8 +125,24 @@ private:
     const Binding* find(std::string_view name) const;
     std::vector<std::string> visible_names() const;
 
+    // object values (evaluate_group.cpp)
+    // An object statement's value: a leaf, a group or CSG (its body run as a scope whose object
+    // statements add members), or an instance; null after an error (reported).
+    ObjectPtr object_value(const Stmt& stmt);
+    ObjectPtr leaf_value(const ObjectStmt& stmt);
+    ObjectPtr group_value(const GroupStmt& stmt);
+    ObjectPtr instance_value(const InstanceStmt& stmt);
+    bool check_depth(const ObjectValue& value);
+    bool check_csg_members(const ObjectValue& csg, const std::string& word);
+    std::optional<Value> eval_object(const ObjectExpr& expr);
+    // Adds a value where objects go now: the body being evaluated, or the scene.
+    void deliver(const ObjectPtr& value, Span added_by);
+    std::string_view keyword_text(const Stmt& s) const;
+
     // A block's items evaluated in order and checked against `table` as they are.
     BlockReader eval_block(const BlockTable& table, const Block& block, Span keyword);
+    // One item evaluated into `reader` (which checks it as it goes).
+    void eval_item(BlockReader& reader, const Item& item);
     std::optional<Value> eval_block_expr(const BlockExpr& expr);
     std::optional<Value> eval_image(const ImageExpr& expr);
     // `default_material`: whether to look up that binding (for an object that may need it).
@@ -141,6 +161,10 @@ private:
     uint64_t iterations_ = 0;
     bool aborted_ = false;
     std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
+    // Where object statements deliver: the members of the group or CSG body being evaluated
+    // (body_ names its kind), or the scene (null).
+    std::vector<ObjectPtr>* members_ = nullptr;
+    const GroupStmt* body_ = nullptr;
 
     // includes
     IncludeChain chain_;

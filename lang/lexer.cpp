@@ -104,7 +104,7 @@ std::string quoted(std::string_view s) {
 }  // namespace
 
 TokenKind keyword_kind(std::string_view word) {
-    if (word.size() < 2 || word.size() > 8) return TokenKind::Ident;
+    if (word.size() < 2 || word.size() > 12) return TokenKind::Ident;  // the longest is "intersection"
     for (const Keyword& k : keywords)
         if (k.word == word) return k.kind;
     return TokenKind::Ident;
@@ -185,6 +185,11 @@ bool is_statement_keyword(TokenKind kind) {
         case TokenKind::Cone:
         case TokenKind::Torus:
         case TokenKind::Disc:
+        case TokenKind::Group:
+        case TokenKind::Union:
+        case TokenKind::Intersection:
+        case TokenKind::Difference:
+        case TokenKind::Object:
             return true;
         default:
             return false;

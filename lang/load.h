@@ -19,6 +19,9 @@ struct CheckSummary {
     size_t triangles = 0;  // triangle objects plus mesh triangles
     size_t lights = 0;
     size_t materials = 0;  // distinct material values used by objects
+    // What the scene stores (distinct geometry): shapes and triangles outside instances plus those
+    // of each prototype once, and the instances that place prototypes.
+    size_t stored_shapes = 0, stored_triangles = 0, instances = 0;
 };
 
 struct LoadOptions {

@@ -67,6 +67,13 @@ std::map<std::string_view, BlockTable> make_tables() {
     t["cone"].hints.emplace_back("radius", "a cone has a 'base_radius' and a 'cap_radius'");
     t["torus"].hints.emplace_back("center", "a torus is centred at the origin: place it with 'translate'");
     t["torus"].hints.emplace_back("radius", "a torus has a 'major' and a 'minor' radius");
+    // The items of group and CSG bodies and of `object` blocks: material and the transforms.
+    for (const char* what : {"group", "union", "intersection", "difference"}) {
+        t[what] = generated(Element::Csg, true);
+        t[what].what = what;
+    }
+    t["object"] = generated(Element::Instance, true);
+    t["object"].what = "object";
     t["material"] = generated(Element::Material);
     // `base` is the language's own: a copy of another material value, applied first.
     t["material"].properties.insert(t["material"].properties.begin(), {"base", render::FieldType::Material});
@@ -123,6 +130,7 @@ std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
     if (const Value* m = r.value("material")) return m->material();
     // Present but failed, or meant by a misspelt name: already reported.
     if (r.has("material") || r.suggested("material")) return std::nullopt;
+    if (ctx.material_optional) return MaterialPtr{};
     const DefaultMaterial& fallback = ctx.default_material;
     if (!fallback.value) {
         Diagnostic& d = ctx.diags.error(r.keyword(), "missing property 'material' in " + r.table().what);

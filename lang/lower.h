@@ -61,6 +61,9 @@ struct BlockContext {
     IncludeChain chain;
     DefaultMaterial default_material = {};
     ObjCache* obj_cache = nullptr;
+    // An object written as a value or in a group or CSG body may take its material from what
+    // encloses it: without one of its own it lowers with a null material instead of an error.
+    bool material_optional = false;
 };
 
 struct LoweredObject {
@@ -128,17 +131,28 @@ struct LoweredScene {
     CheckSummary summary;
 };
 
+class ObjectLowering;
+
 // Collects lowered elements as statements run, deduplicating materials by identity.
 class SceneBuilder {
 public:
     explicit SceneBuilder(uint32_t main_file = 0);
+    ~SceneBuilder();
+    SceneBuilder(const SceneBuilder&) = delete;
+    SceneBuilder& operator=(const SceneBuilder&) = delete;
 
     // The interpreter rejects a second settings or camera before lowering it.
     void set_settings(const Lowered<render::Settings>& settings, Span keyword, IncludeChain chain);
     void set_camera(const Lowered<render::CameraSpec>& camera, Span keyword, IncludeChain chain);
     void add_light(const Lowered<render::LightSpec>& light, Span keyword, IncludeChain chain);
     void add_object(LoweredObject&& object, IncludeChain chain);
-    size_t primitives() const { return primitives_; }
+    // An object value added at `added_by` (a statement's keyword), with its materials resolved
+    // (lang/lower_instances.cpp): a group is flattened into world shapes, `object` of a group or a
+    // mesh adds instances of one prototype per distinct value, CSG becomes one solid. A surface with
+    // no material at all is an error at its object's keyword, with a note at `added_by`.
+    void add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags);
+    size_t primitives() const { return primitives_; }  // stored primitives (distinct geometry)
+    size_t instances() const { return instances_; }
     const render::SceneSpec& spec() const { return scene_.spec; }
     LoweredScene finish();
 
@@ -146,11 +160,15 @@ private:
     uint32_t record(SpanRecord r, const std::vector<FieldSpan>& fields = {});
     uint32_t material_index(const MaterialPtr& material);
     uint32_t texture_tag(const TexturePtr& texture);
+    void drop_object_caches();
 
     LoweredScene scene_;
     std::unordered_map<const MaterialValue*, uint32_t> material_ids_;
     std::vector<MaterialPtr> materials_;  // keeps every used material alive: identities stay unique
     size_t primitives_ = 0;
+    size_t instances_ = 0;
+    std::unique_ptr<ObjectLowering> objects_;
+    friend class ObjectLowering;
 };
 
 // Each SpecError from render::build_scene as an error at the value of the field it concerns when

@@ -176,7 +176,7 @@ Expr* Parser::parse_postfix() {
 
 // primary = NUMBER | STRING | "true" | "false" | IDENT [ "(" [ expression { "," expression } ] ")" ]
 //         | "(" expression ")" | vector | list | "material" block | "image" expression
-//         | "checker" block | "perlin" block ;
+//         | "checker" block | "perlin" block | object_value ;
 Expr* Parser::parse_primary() {
     const Token t = tok_;
     switch (t.kind) {
@@ -226,6 +226,7 @@ Expr* Parser::parse_primary() {
             return e;
         }
         default:
+            if (starts_object_value(t.kind)) return parse_object_value();
             error_here("expected an expression, found " + found());
             return bad_here();
     }

@@ -1,7 +1,8 @@
 // The recursive-descent parser, statements and blocks: one function per production of
 // grammar/wsd.ebnf (quoted above it), panic-mode recovery (an error silences further errors until
 // the parser resynchronizes at the next statement), and a nesting counter instead of a deep
-// stack. Expressions, vectors and lists are in parse_expression.cpp.
+// stack. Expressions, vectors and lists are in parse_expression.cpp; group and CSG bodies, `object`
+// and object blocks written as values in parse_group.cpp.
 #include <limits>
 
 #include "lang/lower.h"
@@ -13,8 +14,10 @@ namespace detail {
 
 namespace {
 
-const std::vector<std::string> statement_words = {"let",   "for",    "if",  "include",  "settings", "camera",
-                                                  "light", "sphere", "box", "triangle", "plane",    "mesh"};
+const std::vector<std::string> statement_words = {
+    "let",    "for",  "if",       "include", "settings",     "camera",     "light",
+    "sphere", "box",  "triangle", "plane",   "mesh",         "cylinder",   "cone",
+    "torus",  "disc", "group",    "union",   "intersection", "difference", "object"};
 
 }  // namespace
 
@@ -114,7 +117,7 @@ StmtList Parser::parse_statements(bool top_level) {
     return keep(statements);
 }
 
-// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt ;
+// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt | group_stmt | instance_stmt ;
 Stmt* Parser::parse_statement() {
     switch (tok_.kind) {
         case TokenKind::Let:
@@ -138,6 +141,13 @@ Stmt* Parser::parse_statement() {
         case TokenKind::Torus:
         case TokenKind::Disc:
             return parse_object();
+        case TokenKind::Group:
+        case TokenKind::Union:
+        case TokenKind::Intersection:
+        case TokenKind::Difference:
+            return parse_group_stmt();
+        case TokenKind::Object:
+            return parse_instance();
         default:
             break;
     }
@@ -164,6 +174,11 @@ Stmt* Parser::parse_statement() {
             else if (!match.empty())
                 help = "did you mean '" + match + "'?";
         }
+        if (group_bodies_ > 0 && (check(TokenKind::Material) || lexeme(tok_) == "scale" ||
+                                  lexeme(tok_) == "rotate" || lexeme(tok_) == "translate"))
+            help =
+                "a group's items (material, scale, rotate, translate) are written directly in its body, not "
+                "inside 'if' or 'for'";
         if (Diagnostic* d = error_here("expected a statement, found " + found()); d && !help.empty())
             d->help.push_back(help);
     }
@@ -411,7 +426,7 @@ bool Parser::parse_block(Block& block, const std::string& what, bool triangle) {
 }
 // The lookahead rule of triangle_block (see the grammar): does the block start with vertices?
 bool Parser::starts_vertex_list() {
-    if (!starts_expression(tok_.kind)) return false;
+    if (!starts_expression(tok_.kind) || starts_object_value(tok_.kind)) return false;
     if (!check(TokenKind::Ident) && !check(TokenKind::Material)) return true;
     switch (peek().kind) {
         case TokenKind::Number:
@@ -463,7 +478,8 @@ ExprList Parser::parse_value_list(const Item& item) {
         // skipped and the block reader reports the unknown property with wsd's spelling.
         return keep(std::vector<Expr*>{skip_braced_block()});
     }
-    if (!starts_expression(tok_.kind)) {
+    // No property takes an object value: an object keyword there starts the next statement.
+    if (!starts_expression(tok_.kind) || starts_object_value(tok_.kind)) {
         if (item.name.empty())
             error_here("expected a value, found " + found());
         else

@@ -12,6 +12,29 @@
 
 namespace wsd::lang::detail {
 
+// The keywords of an object block that may stand where an expression is expected.
+inline bool starts_object_value(TokenKind k) {
+    switch (k) {
+        case TokenKind::Sphere:
+        case TokenKind::Box:
+        case TokenKind::Triangle:
+        case TokenKind::Plane:
+        case TokenKind::Mesh:
+        case TokenKind::Cylinder:
+        case TokenKind::Cone:
+        case TokenKind::Torus:
+        case TokenKind::Disc:
+        case TokenKind::Group:
+        case TokenKind::Union:
+        case TokenKind::Intersection:
+        case TokenKind::Difference:
+        case TokenKind::Object:
+            return true;
+        default:
+            return false;
+    }
+}
+
 inline bool starts_expression(TokenKind k) {
     switch (k) {
         case TokenKind::Number:
@@ -30,7 +53,7 @@ inline bool starts_expression(TokenKind k) {
         case TokenKind::Perlin:
             return true;
         default:
-            return false;
+            return starts_object_value(k);
     }
 }
 
@@ -86,6 +109,11 @@ private:
     Stmt* parse_if();
     Stmt* parse_include();
     Stmt* parse_object();
+    Stmt* parse_group_stmt();  // group, union, intersection, difference (parse_group.cpp)
+    Stmt* parse_instance();    // object EXPR { items }
+    StmtList parse_group_body(GroupStmt& group);
+    bool starts_group_item();
+    Expr* parse_object_value();  // an object block as an expression
     StmtList parse_body(const char* what);
     bool parse_name(std::string_view& name, Span& span, const char* after);
 
@@ -145,6 +173,7 @@ private:
     bool bailed_ = false;     // nesting limit or too many errors: the parse winds down
     bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
     int depth_ = 0;
+    int group_bodies_ = 0;  // group and CSG bodies being parsed, around the current token
 };
 
 }  // namespace wsd::lang::detail

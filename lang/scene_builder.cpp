@@ -8,6 +8,14 @@ namespace wsd::lang {
 
 namespace {
 
+// What a shape stores: 1 shape (a CSG with its members counts once), and its triangles.
+void count_stored(const render::ShapeSpec& s, size_t& triangles) {
+    if (s.kind == render::ShapeKind::Triangle) ++triangles;
+    if (s.kind == render::ShapeKind::Mesh && s.mesh) triangles += s.mesh->faces.size();
+    if (s.kind == render::ShapeKind::Csg && s.csg)
+        for (const render::ShapeSpec& m : s.csg->members) count_stored(m, triangles);
+}
+
 SpanRecord plain(Span span, IncludeChain chain) {
     SpanRecord r;
     r.span = span;
@@ -16,11 +24,6 @@ SpanRecord plain(Span span, IncludeChain chain) {
 }
 
 }  // namespace
-
-SceneBuilder::SceneBuilder(uint32_t main_file) {
-    // Tag 0: the start of the main file, for errors about elements without a source.
-    scene_.spans.push_back(plain(Span{main_file, 0, 0}, nullptr));
-}
 
 uint32_t SceneBuilder::record(SpanRecord r, const std::vector<FieldSpan>& fields) {
     r.fields_begin = static_cast<uint32_t>(scene_.field_spans.size());
@@ -79,7 +82,18 @@ void SceneBuilder::add_object(LoweredObject&& object, IncludeChain chain) {
 }
 
 LoweredScene SceneBuilder::finish() {
-    scene_.summary.materials = scene_.spec.materials.size();
+    drop_object_caches();
+    CheckSummary& summary = scene_.summary;
+    summary.materials = scene_.spec.materials.size();
+    summary.instances = instances_;
+    auto stored = [&summary](const render::ShapeSpec& s) {
+        if (s.kind == render::ShapeKind::Instance) return;
+        ++summary.stored_shapes;
+        count_stored(s, summary.stored_triangles);
+    };
+    for (const render::ShapeSpec& s : scene_.spec.shapes) stored(s);
+    for (const render::PrototypeSpec& p : scene_.spec.prototypes)
+        for (const render::ShapeSpec& s : p.shapes) stored(s);
     material_ids_.clear();
     materials_.clear();
     LoweredScene out = std::move(scene_);

@@ -26,6 +26,8 @@ const char* type_name(ValueType type) {
             return "material";
         case ValueType::Texture:
             return "texture";
+        case ValueType::Object:
+            return "object";
     }
     return "value";
 }
@@ -79,6 +81,8 @@ std::string describe(const Value& v) {
                 .append(", ")
                 .append(format_number(v.vec3().z))
                 .append(">");
+        case ValueType::Object:
+            return "an object";
         default:
             return std::string("a ") + type_name(v.type());
     }

@@ -27,6 +27,8 @@ static_assert(kMaxSquareLightGridSide * kMaxSquareLightGridSide == kMaxLightSamp
 
 // Primitives of a whole scene, a mesh's triangles counted one by one (primitive ids are 24 bits).
 inline constexpr size_t kMaxPrimitives = size_t{1} << 24;
+// Instances of shared geometry (each counted once however much it holds), apart from the above.
+inline constexpr size_t kMaxInstances = size_t{1} << 24;
 
 // A texture image, decoded (a 20-byte header can claim 4 billion pixels).
 inline constexpr long long kMaxTexturePixels = 1LL << 27;

@@ -71,6 +71,9 @@ std::string shape(const Expr& e) {
         case ExprKind::Bad:
             s << "BAD";
             break;
+        case ExprKind::Object:
+            s << "(object value)";
+            break;
         case ExprKind::PackedList: {
             const PackedVectors& packed = *e.as<PackedListExpr>().packed;
             s << "(packed " << packed.dims << "x" << packed.size() << ")";
