@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
+#include "render/effects.h"
 #include "render/mesh_topology.h"
 #include "tests/render/scene_builders.h"
 
@@ -537,4 +538,26 @@ TEST_CASE("CSG: members that are not solids, and unbounded solids, are errors", 
     CHECK(!wsd::render::build_scene(spec, errors, true, 1));
     REQUIRE(errors.size() == 1);
     CHECK_THAT(errors[0].message, Catch::Contains("unbounded"));
+}
+
+TEST_CASE("CSG is an effect naming its solid, with its members' materials' effects", "[csg]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    auto mirror = matte({1, 1, 1});
+    mirror.reflection = 0.5;
+    const uint32_t shiny = add_material(spec, mirror), g = add_material(spec, glass());
+    spec.shapes.push_back(sphere({3, 0, 0}, 1, red));
+    CHECK(!wsd::render::analyse_effects(spec).has(wsd::render::Effect::Csg));
+    spec.shapes.push_back(csg(CsgOp::Union,
+                              {sphere({0, 0, 0}, 1, g), csg(CsgOp::Union, {box({0, 0, 0}, {1, 1, 1}, shiny)}),
+                               sphere({0, 1, 0}, 1, g)},
+                              red));
+    const auto fx = wsd::render::analyse_effects(spec);
+    using wsd::render::Effect;
+    REQUIRE(fx.has(Effect::Csg));
+    CHECK(fx.shapes[size_t(Effect::Csg)] == std::vector<uint32_t>{1});
+    CHECK(fx.shapes[size_t(Effect::Refraction)] == std::vector<uint32_t>{1});  // once, for two members
+    CHECK(fx.shapes[size_t(Effect::Reflection)] == std::vector<uint32_t>{1});
+    // The solid is walked by shadow rays as transmissive although its own material is not.
+    CHECK(build(spec)->geometry().has_transmissive());
 }
