@@ -1,6 +1,7 @@
 // The property tables of every block, and the lowering of checked settings, camera, light and
-// object blocks (spheres, boxes, triangles, planes; meshes in lower_mesh.cpp) into render spec
-// elements, with the cross-property checks the tables cannot express. Transforms compose here too.
+// object blocks (spheres, boxes, triangles, planes, cylinders, cones, tori, discs; meshes in
+// lower_mesh.cpp) into render spec elements, with the cross-property checks the tables cannot
+// express. Transforms compose here too.
 #include "lang/lower.h"
 
 #include <cmath>
@@ -170,6 +171,66 @@ void lower_plane(BlockReader& r, LoweredObject& o) {
         r.fail(r.value_span("normal"), "plane 'normal' must not be the zero vector");
 }
 
+// The later of two properties as written (the one a cross-property error points at), or the one
+// that is present.
+std::string_view later_of(const BlockReader& r, std::string_view a, std::string_view b) {
+    if (!r.has(a)) return b;
+    if (!r.has(b)) return a;
+    return written_after(r, a, b) ? a : b;
+}
+
+void lower_cylinder(BlockReader& r, LoweredObject& o) {
+    bool ok = r.require("base") & r.require("cap") & r.require("radius");
+    o.shape.kind = render::ShapeKind::Cylinder;
+    if (ok && r.ok() && o.shape.base == o.shape.cap)
+        r.fail(r.value_span(later_of(r, "base", "cap")), "cylinder 'base' and 'cap' are the same point " +
+                                                             describe(*r.value("cap")) +
+                                                             ": the cylinder has no axis");
+}
+
+void lower_cone(BlockReader& r, LoweredObject& o) {
+    bool ok = r.require("base") & r.require("cap") & r.require("base_radius") & r.require("cap_radius");
+    o.shape.kind = render::ShapeKind::Cone;
+    if (!ok || !r.ok()) return;
+    if (o.shape.base == o.shape.cap)
+        r.fail(r.value_span(later_of(r, "base", "cap")), "cone 'base' and 'cap' are the same point " +
+                                                             describe(*r.value("cap")) +
+                                                             ": the cone has no axis");
+    else if (o.shape.radius == 0 && o.shape.cap_radius == 0)
+        r.fail(r.value_span(later_of(r, "base_radius", "cap_radius")),
+               "cone 'base_radius' and 'cap_radius' are both 0: the cone has no width");
+}
+
+void lower_torus(BlockReader& r, LoweredObject& o) {
+    r.require("major");
+    r.require("minor");
+    o.shape.kind = render::ShapeKind::Torus;
+}
+
+void lower_disc(BlockReader& r, LoweredObject& o) {
+    bool ok = r.require("center") & r.require("normal") & r.require("radius");
+    o.shape.kind = render::ShapeKind::Disc;
+    if (!ok || !r.ok()) return;
+    if (o.shape.normal == glm::dvec3(0.0))
+        r.fail(r.value_span("normal"), "disc 'normal' must not be the zero vector");
+    else if (!(o.shape.hole < o.shape.radius))
+        r.fail(r.value_span(later_of(r, "hole", "radius")),
+               "disc 'hole' must be less than 'radius', found hole " + render::format_number(o.shape.hole) +
+                   " and radius " + render::format_number(o.shape.radius));
+}
+
+void check_spot(BlockReader& r, const render::LightSpec& l) {
+    r.require("look_at");
+    if (!r.ok()) return;
+    if (l.look_at == l.position)
+        r.fail(r.value_span(later_of(r, "position", "look_at")),
+               "spot light 'look_at' is the same point as 'position': the spot has no axis");
+    else if (l.angle > l.falloff)
+        r.fail(r.value_span(later_of(r, "angle", "falloff")),
+               "spot light 'angle' must not exceed 'falloff', found angle " + render::format_number(l.angle) +
+                   " and falloff " + render::format_number(l.falloff));
+}
+
 }  // namespace
 
 const BlockTable& block_table(std::string_view what) {
@@ -328,6 +389,7 @@ std::optional<Lowered<render::LightSpec>> lower_light(BlockReader& r) {
         if (auto problem = render::light_radiance_problem(l.color, l.intensity))
             r.fail(r.value_span(r.has("intensity") ? "intensity" : "color"), *problem);
     }
+    if (l.kind == render::LightKind::Spot) check_spot(r, l);
     if (area) {
         r.require("u");
         r.require("v");
@@ -375,16 +437,16 @@ std::optional<LoweredObject> lower_object(BlockReader& r, BlockContext& ctx) {
             lower_mesh(r, ctx, o);
             break;
         case render::Element::Cylinder:
-            o.shape.kind = render::ShapeKind::Cylinder;
+            lower_cylinder(r, o);
             break;
         case render::Element::Cone:
-            o.shape.kind = render::ShapeKind::Cone;
+            lower_cone(r, o);
             break;
         case render::Element::Torus:
-            o.shape.kind = render::ShapeKind::Torus;
+            lower_torus(r, o);
             break;
         case render::Element::Disc:
-            o.shape.kind = render::ShapeKind::Disc;
+            lower_disc(r, o);
             break;
         default:
             return std::nullopt;

@@ -61,7 +61,7 @@ std::vector<std::string> EffectSet::names() const {
 EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
     EffectSet set;
     for (const LightSpec& l : spec.lights) {
-        if (l.kind == LightKind::Point) {
+        if (l.kind != LightKind::Area) {  // a spot light's shadows are a point light's
             set.add(Effect::PointShadows);
         } else {
             set.add(Effect::AreaShadows);

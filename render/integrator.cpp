@@ -239,11 +239,18 @@ private:
             Vis sd(0), ss(0);
             if (!light.area) {
                 const Vec3 to_light = light.position - sh.p;
-                const Term term = sample_term(sh, to_light);
+                // A spot light is a point light whose terms its cone scales; outside the cone
+                // it needs no shadow ray.
+                const double cone = light.spot ? spot_factor(light, to_light) : 1.0;
+                const Term term = cone > 0 ? sample_term(sh, to_light) : Term{0, 0, false};
                 if (term.needed) {
                     const Vis v = visibility(sh, to_light, light.position);
                     sd += v * term.nl;
                     ss += v * term.sp;
+                    if (light.spot) {
+                        sd *= cone;
+                        ss *= cone;
+                    }
                 }
             } else {
                 use_shaft_ = light.count() >= kShaftMinSamples && gather_shaft(sh, light);

@@ -14,6 +14,14 @@ std::optional<std::string> validate_light(const LightSpec& spec) {
     if (!std::isfinite(spec.intensity) || spec.intensity < 0)
         return "light intensity must be finite and non-negative";
     if (spec.kind == LightKind::Point) return std::nullopt;
+    if (spec.kind == LightKind::Spot) {
+        if (!finite3(spec.look_at)) return "spot light look_at must be finite";
+        if (spec.look_at == spec.position) return "spot light look_at must differ from its position";
+        if (!(spec.angle > 0 && spec.angle <= 90) || !(spec.falloff > 0 && spec.falloff <= 90))
+            return "spot light angle and falloff must be in (0, 90] degrees";
+        if (!(spec.angle <= spec.falloff)) return "spot light angle must not exceed its falloff";
+        return std::nullopt;
+    }
     if (!finite3(spec.u) || !finite3(spec.v)) return "area light edges u and v must be finite";
     const double lu = glm::length(spec.u), lv = glm::length(spec.v);
     if (!(lu > 0)) return "area light edge u must be non-zero";
@@ -30,10 +38,23 @@ std::optional<std::string> validate_light(const LightSpec& spec) {
     return std::nullopt;
 }
 
+double cos_degrees(double degrees) {
+    if (degrees == 0) return 1;
+    if (degrees == 60) return 0.5;
+    if (degrees == 90) return 0;
+    return std::cos(degrees * (kPi / 180));
+}
+
 Light prepare_light(const LightSpec& spec) {
     Light l;
     l.position = spec.position;
     l.radiance = spec.color * spec.intensity;
+    if (spec.kind == LightKind::Spot) {
+        l.spot = true;
+        l.axis = safe_normalize(spec.look_at - spec.position, Vec3(0, -1, 0));
+        l.cos_angle = cos_degrees(spec.angle);
+        l.cos_falloff = cos_degrees(spec.falloff);
+    }
     if (spec.kind == LightKind::Area) {
         l.area = true;
         l.nu = spec.samples_u;

@@ -49,6 +49,7 @@ FieldAccess material_ambient() {
 const Settings kDefaultSettings{};
 const CameraSpec kDefaultCamera{};
 const LightSpec kDefaultLight{};
+const LightSpec kDefaultSpotLight{LightKind::Spot};
 const ShapeSpec kDefaultShape{};
 const MaterialSpec kDefaultMaterial{};
 const TextureSpec kDefaultTexture{};
@@ -177,7 +178,20 @@ ElementTable area_light_table() {
 }
 
 ElementTable spot_light_table() {
-    return {Element::SpotLight, "light spot", {}, &kDefaultLight};
+    std::vector<Field> f = light_fields(false);
+    f.insert(f.begin() + 1, {"look_at",
+                             FieldType::Vector3,
+                             {},
+                             "the point the spot's axis aims at (not the position)",
+                             vec3_member<&LightSpec::look_at>(),
+                             {},
+                             "required"});
+    f.push_back({"angle", FieldType::Number, Range{0, 90, true, false},
+                 "full intensity within this many degrees of the axis", number_member<&LightSpec::angle>()});
+    f.push_back({"falloff", FieldType::Number, Range{0, 90, true, false},
+                 "no light beyond this many degrees from the axis (at least angle)",
+                 number_member<&LightSpec::falloff>()});
+    return {Element::SpotLight, "light spot", std::move(f), &kDefaultSpotLight};
 }
 
 ElementTable sphere_table() {
@@ -254,20 +268,64 @@ ElementTable mesh_table() {
             &kDefaultShape};
 }
 
+const Field kOpenField{"open",
+                       FieldType::Bool,
+                       {},
+                       "no end caps: a tube, seen from inside too",
+                       number_member<&ShapeSpec::open>()};
+
+Field required_vec3(std::string_view name, std::string_view meaning, FieldAccess access) {
+    return {name, FieldType::Vector3, {}, meaning, access, {}, "required"};
+}
+
+Field required_number(std::string_view name, Range range, std::string_view meaning, FieldAccess access) {
+    return {name, FieldType::Number, range, meaning, access, {}, "required"};
+}
+
 ElementTable cylinder_table() {
-    return {Element::Cylinder, "cylinder", {kMaterialField}, &kDefaultShape};
+    return {Element::Cylinder,
+            "cylinder",
+            {required_vec3("base", "centre of the base end", vec3_member<&ShapeSpec::base>()),
+             required_vec3("cap", "centre of the other end (not base)", vec3_member<&ShapeSpec::cap>()),
+             required_number("radius", above(0), "radius", number_member<&ShapeSpec::radius>()), kOpenField,
+             kMaterialField},
+            &kDefaultShape};
 }
 
 ElementTable cone_table() {
-    return {Element::Cone, "cone", {kMaterialField}, &kDefaultShape};
+    return {
+        Element::Cone,
+        "cone",
+        {required_vec3("base", "centre of the base end", vec3_member<&ShapeSpec::base>()),
+         required_number("base_radius", at_least(0), "radius at base", number_member<&ShapeSpec::radius>()),
+         required_vec3("cap", "centre of the other end (not base)", vec3_member<&ShapeSpec::cap>()),
+         required_number("cap_radius", at_least(0), "radius at cap (not both 0)",
+                         number_member<&ShapeSpec::cap_radius>()),
+         kOpenField, kMaterialField},
+        &kDefaultShape};
 }
 
 ElementTable torus_table() {
-    return {Element::Torus, "torus", {kMaterialField}, &kDefaultShape};
+    return {Element::Torus,
+            "torus",
+            {required_number("major", above(0), "radius of the circle the tube follows (in the xz-plane)",
+                             number_member<&ShapeSpec::major>()),
+             required_number("minor", above(0), "radius of the tube (minor >= major: a spindle torus)",
+                             number_member<&ShapeSpec::minor>()),
+             kMaterialField},
+            &kDefaultShape};
 }
 
 ElementTable disc_table() {
-    return {Element::Disc, "disc", {kMaterialField}, &kDefaultShape};
+    return {Element::Disc,
+            "disc",
+            {required_vec3("center", "centre", vec3_member<&ShapeSpec::center>()),
+             required_vec3("normal", "normal (non-zero; normalized)", vec3_member<&ShapeSpec::normal>()),
+             required_number("radius", above(0), "outer radius", number_member<&ShapeSpec::radius>()),
+             {"hole", FieldType::Number, at_least(0), "radius of the hole in the middle (below radius)",
+              number_member<&ShapeSpec::hole>()},
+             kMaterialField},
+            &kDefaultShape};
 }
 
 ElementTable csg_table() {

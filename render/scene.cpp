@@ -71,6 +71,18 @@ bool check_light(const LightSpec& l, size_t index, std::vector<SpecError>& error
             return false;
         }
     }
+    if (l.kind == LightKind::Spot && l.angle > l.falloff) {
+        errors.push_back({SpecItem::Light, index, l.tag,
+                          "spot light 'angle' must not exceed 'falloff', found angle " +
+                              format_number(l.angle) + " and falloff " + format_number(l.falloff),
+                          -1, "angle"});
+        return false;
+    }
+    if (l.kind == LightKind::Spot && l.look_at == l.position) {
+        errors.push_back({SpecItem::Light, index, l.tag,
+                          "spot light 'look_at' is the same point as 'position'", -1, "look_at"});
+        return false;
+    }
     if (auto err = validate_light(l)) {
         errors.push_back({SpecItem::Light, index, l.tag, *err, -1});
         return false;
