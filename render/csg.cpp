@@ -73,6 +73,17 @@ Extent extent_of(const ShapeSpec& s, const Mat4& parent) {
             if (s.mesh)
                 for (const glm::vec3& v : s.mesh->vertices) e.add_corners(m, Vec3(v), Vec3(v));
             break;
+        case ShapeKind::Cylinder:
+        case ShapeKind::Cone:
+        case ShapeKind::Torus: {
+            QuadricPrim q;
+            Mat4 frame(1.0);
+            if (make_quadric(s, q, frame)) break;  // reported when built
+            const bool torus = s.kind == ShapeKind::Torus;
+            const double r = torus ? q.r0 + q.r1 : std::max(q.r0, q.r1);
+            e.add_corners(m * frame, Vec3(-r, torus ? -q.r1 : 0, -r), Vec3(r, torus ? q.r1 : q.h, r));
+            break;
+        }
         case ShapeKind::Csg: {
             if (!s.csg || s.csg->members.empty()) break;
             const auto& ms = s.csg->members;
@@ -141,7 +152,7 @@ struct SolidBuilder {
             fail(where, *msg);
             return 0;
         }
-        if (!leaf(s, mem, where)) return 0;
+        if (!leaf(s, m, mem, where)) return 0;
         solid.members.push_back(std::move(mem));
         return ~static_cast<int32_t>(solid.members.size() - 1);
     }
@@ -164,7 +175,9 @@ struct SolidBuilder {
         return index;
     }
 
-    bool leaf(const ShapeSpec& s, CsgMember& mem, const std::string& where) {
+    bool quadric(const ShapeSpec& s, const Mat4& m, CsgMember& mem, const std::string& where);
+
+    bool leaf(const ShapeSpec& s, const Mat4& m, CsgMember& mem, const std::string& where) {
         auto band = [&](double extent) { return mem.x.resid_lin * extent + mem.x.resid_t; };
         switch (s.kind) {
             case ShapeKind::Sphere:
@@ -215,6 +228,10 @@ struct SolidBuilder {
                 mem.kind = CsgMemberKind::Mesh;
                 return true;
             }
+            case ShapeKind::Cylinder:
+            case ShapeKind::Cone:
+            case ShapeKind::Torus:
+                return quadric(s, m, mem, where);
             default:
                 return fail(where, std::string("'") + kind_word(s.kind) +
                                        "' is not a solid; CSG needs closed shapes"),
@@ -222,6 +239,22 @@ struct SolidBuilder {
         }
     }
 };
+
+// A closed cylinder or cone, or a torus: the member's frame becomes the shape's canonical one.
+bool SolidBuilder::quadric(const ShapeSpec& s, const Mat4& m, CsgMember& mem, const std::string& where) {
+    if (s.open && s.kind != ShapeKind::Torus)
+        return fail(where,
+                    std::string("an open ") + kind_word(s.kind) + " is not a solid; CSG needs closed shapes"),
+               false;
+    Mat4 frame(1.0);
+    if (auto problem = make_quadric(s, mem.quadric, frame)) return fail(where, *problem), false;
+    if (auto msg = make_transform(m * frame, mem.x)) return fail(where, *msg), false;
+    const QuadricPrim& q = mem.quadric;
+    const double r = s.kind == ShapeKind::Torus ? q.r0 + q.r1 : std::max(q.r0, q.r1);
+    mem.band = mem.x.resid_lin * std::max(r, q.h) + mem.x.resid_t;
+    mem.kind = CsgMemberKind::Quadric;
+    return true;
+}
 
 // The result's inside at the members' states (0 or 1 each).
 bool eval(const CsgSolid& s, const int8_t* state, int32_t node) {

@@ -148,6 +148,28 @@ int plane_crossings(const CsgMember& m, uint32_t index, const Local& l, std::vec
     return leaving ? 1 : 0;
 }
 
+// A closed cylinder or cone, or a torus: its crossings alternate entering and leaving. The error
+// of t is the origin's error (and the surface point's own) across the surface, over the
+// direction's component along the normal.
+int quadric_member_crossings(const CsgMember& m, uint32_t index, const Local& l,
+                             std::vector<CsgCrossing>& out) {
+    double t[4];
+    int part[4];
+    const int n = quadric_crossings(m.quadric, l.o, l.d, t, part, 4);
+    const double scale = std::max(m.quadric.r0, m.quadric.r1) + m.quadric.h;
+    const double len = std::sqrt(glm::dot(l.d, l.d));
+    for (int i = 0; i < n; ++i) {
+        const QuadricPoint qp = quadric_part_surface(m.quadric, part[i], l.o, l.d, t[i]);
+        const Vec3 an = abs3(qp.n);
+        const double across = glm::dot(an, l.o_err + qp.p_error);
+        const double nd = std::abs(glm::dot(qp.n, l.d));
+        const double err = (across + gamma(32) * (scale + glm::length(l.o))) / std::max(nd, gamma(4) * len) +
+                           gamma(16) * std::abs(t[i]);
+        push(out, t[i], err, index, uint32_t(part[i]), 0, 0, (i % 2 == 0) ? 1 : -1, false);
+    }
+    return 0;
+}
+
 // The watertight test of render/shapes.h on the whole line: t of any sign, with the sign of the
 // determinant (negative: the line meets the face's front, where the winding is counter-clockwise).
 bool triangle_line(const RayPre& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, double& t_out,
@@ -290,6 +312,8 @@ int member_crossings(const CsgMember& m, uint32_t index, const RayPre& r, std::v
             return plane_crossings(m, index, to_local(m, r), out);
         case CsgMemberKind::Mesh:
             return mesh_crossings(m, index, r, out, c);
+        case CsgMemberKind::Quadric:
+            return quadric_member_crossings(m, index, to_local(m, r), out);
     }
     return 0;
 }
@@ -341,6 +365,23 @@ void member_surface(const CsgMember& m, const Ray& ray, double t, uint32_t sub, 
             s.plane_xy = Vec2(glm::dot(p, u), glm::dot(p, v));
             s.uv = s.plane_xy / m.uv_scale;
             s.planar = true;
+            return;
+        }
+        case CsgMemberKind::Quadric: {
+            const QuadricPrim& q = m.quadric;
+            const Vec3 o = x.inv_point(ray.o), d = x.inv_vector(ray.d);
+            const QuadricPoint qp = quadric_part_surface(q, static_cast<int>(sub), o, d, t);
+            s.p = x.point(qp.p);
+            s.p_error = x.point_error(qp.p, qp.p_error + m.band);
+            s.ng = safe_normalize(x.normal(qp.n), qp.n);
+            s.ns = s.ng;
+            s.uv = qp.uv;
+            s.p_object = quadric_to_object(q, qp.p);
+            if (sub != kQuadricBody) {  // flat caps take the plane's path for checkers
+                s.planar = true;
+                s.plane_xy =
+                    Vec2(qp.p.x, qp.p.z) + Vec2(glm::dot(q.origin, q.axis_x), glm::dot(q.origin, q.axis_z));
+            }
             return;
         }
         case CsgMemberKind::Mesh: {

@@ -16,12 +16,13 @@
 #include <vector>
 
 #include "render/aabb.h"
+#include "render/quadric_prims.h"
 #include "render/scene_spec.h"
 #include "render/transform.h"
 
 namespace wsd::render {
 
-enum class CsgMemberKind : uint8_t { Sphere, Box, Plane, Mesh };
+enum class CsgMemberKind : uint8_t { Sphere, Box, Plane, Mesh, Quadric };
 
 // A closed triangle mesh member: world-space float vertices (the watertight test of the
 // one-level tree runs on them), a small BVH over its faces for whole-line queries.
@@ -48,6 +49,7 @@ struct CsgMember {
     double radius = 1, c = 0, uv_scale = 1;
     Vec3 band{0};  // per-axis uncertainty of a world point mapped into this frame (transform residual)
     std::shared_ptr<const CsgMesh> mesh;
+    QuadricPrim quadric;  // closed cylinder or cone, torus: x maps its canonical frame to world
     // The member's own material, resolved through enclosing nested CSGs; kInheritMaterial: the
     // material the whole solid has where it is used (member_material).
     uint32_t material = kInheritMaterial;
@@ -92,7 +94,7 @@ struct CsgCrossing {
     double t = 0;
     double err = 0;  // bound on the error of t
     uint32_t member = 0;
-    uint32_t sub = 0;  // box: face; mesh: index into CsgMesh::tris
+    uint32_t sub = 0;  // box: face; mesh: index into CsgMesh::tris; quadric: its part
     double b1 = 0, b2 = 0;
     int8_t delta = 0;        // +1 entering the member, −1 leaving it
     bool at_origin = false;  // the surface the ray's origin lies on

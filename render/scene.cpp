@@ -155,10 +155,6 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
                 if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
                 break;
             }
-            case ShapeKind::Plane:
-            case ShapeKind::Cylinder:
-            case ShapeKind::Cone:
-            case ShapeKind::Torus:
             case ShapeKind::Csg: {
                 Vec3 clo, chi;
                 if (sh.csg && csg_local_bounds(*sh.csg, clo, chi))
@@ -167,6 +163,10 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
                     transmissive_unbounded_ = true;
                 break;
             }
+            case ShapeKind::Plane:
+            case ShapeKind::Cylinder:
+            case ShapeKind::Cone:
+            case ShapeKind::Torus:
             case ShapeKind::Disc:
             case ShapeKind::Instance:
                 transmissive_unbounded_ = true;

@@ -533,6 +533,15 @@ TEST_CASE("CSG: members that are not solids, and unbounded solids, are errors", 
     CHECK(!wsd::render::build_scene(spec, errors, true, 1));
     REQUIRE(errors.size() == 1);
     CHECK(errors[0].message == "CSG member 2: 'triangle' is not a solid; CSG needs closed shapes");
+    ShapeSpec tube;
+    tube.kind = ShapeKind::Cylinder;
+    tube.open = true;
+    tube.material = red;
+    spec.shapes.back() = csg(CsgOp::Difference, {sphere({0, 0, 0}, 1, red), tube}, red);
+    errors.clear();
+    CHECK(!wsd::render::build_scene(spec, errors, true, 1));
+    REQUIRE(errors.size() == 1);
+    CHECK(errors[0].message == "CSG member 2: an open cylinder is not a solid; CSG needs closed shapes");
     spec.shapes.back() = csg(CsgOp::Union, {sphere({0, 0, 0}, 1, red), plane({0, 1, 0}, 0, red)}, red);
     errors.clear();
     CHECK(!wsd::render::build_scene(spec, errors, true, 1));
@@ -560,4 +569,79 @@ TEST_CASE("CSG is an effect naming its solid, with its members' materials' effec
     CHECK(fx.shapes[size_t(Effect::Reflection)] == std::vector<uint32_t>{1});
     // The solid is walked by shadow rays as transmissive although its own material is not.
     CHECK(build(spec)->geometry().has_transmissive());
+}
+
+TEST_CASE("CSG: a box minus a cylinder has a round hole of the exact area; tori and cones as members",
+          "[csg]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    ShapeSpec drill;
+    drill.kind = ShapeKind::Cylinder;
+    drill.base = {0.1, -0.05, -2};
+    drill.cap = {0.1, -0.05, 2};
+    drill.radius = 0.4;
+    drill.material = red;
+    spec.shapes.push_back(csg(CsgOp::Difference, {box({-1, -1, -0.2}, {1, 1, 0.2}, red), drill}, red));
+    auto scene = build(spec);
+    const int n = 400;
+    int holes = 0, wrong = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const Vec3 o(-1 + (i + 0.5) * 2.0 / n, -1 + (j + 0.5) * 2.0 / n, -5);
+            const bool hole = !first_hit(*scene, Ray{o, {0, 0, 1}});
+            holes += hole ? 1 : 0;
+            const double r = std::hypot(o.x - 0.1, o.y + 0.05);
+            if (std::abs(r - 0.4) > 1e-9 && hole != (r < 0.4)) ++wrong;
+        }
+    CHECK(wrong == 0);
+    CHECK(holes * (2.0 / n) * (2.0 / n) == Approx(3.14159265358979323846 * 0.16).epsilon(0.005));
+
+    // A torus around a cone, intersected with a half-space: first hits against classification.
+    ShapeSpec ring;
+    ring.kind = ShapeKind::Torus;
+    ring.major = 0.8;
+    ring.minor = 0.3;
+    ring.object_to_world = glm::rotate(Mat4(1.0), 0.5, Vec3(1, 0, 0));
+    ShapeSpec spike;
+    spike.kind = ShapeKind::Cone;
+    spike.base = {0, -1, 0};
+    spike.cap = {0, 1, 0};
+    spike.radius = 0.6;
+    spike.cap_radius = 0.1;
+    ShapeSpec solid =
+        csg(CsgOp::Intersection,
+            {csg(CsgOp::Union, {inherit(ring), inherit(spike)}), inherit(plane({0.2, 1, 0.1}, 0.5, 0))}, red);
+    auto spec2 = basic_scene(8, 8);
+    add_material(spec2, matte({1, 0, 0}));
+    spec2.shapes.push_back(solid);
+    auto scene2 = build(spec2);
+    // Classification of the torus and the cone in their own frames.
+    auto inside_ring = [&](const Vec3& p) {
+        const Vec3 q = Vec3(glm::inverse(ring.object_to_world) * glm::dvec4(p, 1.0));
+        const double a = std::hypot(q.x, q.z) - 0.8;
+        return a * a + q.y * q.y < 0.09;
+    };
+    auto inside_spike = [&](const Vec3& p) {
+        if (p.y <= -1 || p.y >= 1) return false;
+        return std::hypot(p.x, p.z) < 0.6 + (p.y + 1) / 2 * (0.1 - 0.6);
+    };
+    auto classify = [&](const Vec3& p) {
+        return (inside_ring(p) || inside_spike(p)) && glm::dot(glm::normalize(Vec3(0.2, 1, 0.1)), p) < 0.5;
+    };
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.2, 1.2);
+    int hits = 0, failures = 0;
+    for (int k = 0; k < 3000; ++k) {
+        const Vec3 o = unit(rng) * 4.0;
+        const Vec3 d = glm::normalize(Vec3(u(rng), u(rng), u(rng)) - o);
+        const auto hit = first_hit(*scene2, Ray{o, d});
+        const double end = hit ? hit->t : 8.0;
+        for (int s = 1; s < 64; ++s)
+            if (classify(o + (end * s / 64.0) * d)) ++failures;
+        if (!hit) continue;
+        ++hits;
+        if (classify(o + (hit->t - 1e-6) * d) || !classify(o + (hit->t + 1e-6) * d)) ++failures;
+    }
+    CHECK(hits > 500);
+    CHECK(failures == 0);
 }
