@@ -204,7 +204,7 @@ TEST_CASE("CSG: first hits agree with brute-force point classification", "[csg]"
     std::uniform_real_distribution<double> u(-1.5, 1.5);
     int hits = 0, failures = 0;
     auto classify = [&](const Vec3& p) { return inside(solid, Mat4(1.0), p); };
-    for (int k = 0; k < 3000; ++k) {
+    for (int k = 0; k < 20000; ++k) {
         const bool from_inside = k % 3 == 0;
         const Vec3 o = from_inside ? Vec3(u(rng), u(rng), u(rng)) * 0.6 : unit(rng) * 4.0;
         const Vec3 target(u(rng), u(rng), u(rng));
@@ -221,11 +221,11 @@ TEST_CASE("CSG: first hits agree with brute-force point classification", "[csg]"
         if (classify(o + (hit->t - 1e-6) * d) == classify(o + (hit->t + 1e-6) * d)) ++failures;
         if (classify(o + (hit->t - 1e-6) * d) != start) ++failures;
     }
-    CHECK(hits > 1000);
+    CHECK(hits > 8000);
     CHECK(failures == 0);
 }
 
-TEST_CASE("CSG coincident faces: a box minus a box sharing faces leaves no sliver", "[csg][robust]") {
+TEST_CASE("R72: CSG coincident faces: a box minus a box sharing faces leaves no sliver", "[csg][robust]") {
     auto spec = basic_scene(8, 8);
     const uint32_t red = add_material(spec, matte({1, 0, 0})),
                    steel = add_material(spec, matte({0.5, 0.5, 0.5}));
@@ -266,7 +266,7 @@ TEST_CASE("CSG coincident faces: a box minus a box sharing faces leaves no slive
     CHECK(wrong_material == 0);
 }
 
-TEST_CASE("CSG coincident faces: two boxes touching face to face make one solid", "[csg][robust]") {
+TEST_CASE("R73: CSG coincident faces: two boxes touching face to face make one solid", "[csg][robust]") {
     auto spec = basic_scene(8, 8);
     const uint32_t red = add_material(spec, matte({1, 0, 0}));
     ShapeSpec left = box({-0.5, -0.5, -0.5}, {0, 0.5, 0.5}, red),
@@ -313,7 +313,7 @@ TEST_CASE("CSG coincident faces: two boxes touching face to face make one solid"
     }
 }
 
-TEST_CASE("CSG: a member exactly touching another changes nothing", "[csg][robust]") {
+TEST_CASE("R73: CSG: a member exactly touching another changes nothing", "[csg][robust]") {
     auto spec = basic_scene(8, 8);
     const uint32_t red = add_material(spec, matte({1, 0, 0}));
     // The sphere touches the box's top face at one point from outside: the difference is the box.
@@ -335,7 +335,7 @@ TEST_CASE("CSG: a member exactly touching another changes nothing", "[csg][robus
     CHECK(bad == 0);
 }
 
-TEST_CASE("CSG: a glass union of two spheres refracts at its outer surface only (the analytic lens)",
+TEST_CASE("R75: CSG: a glass union of two spheres refracts at its outer surface only (the analytic lens)",
           "[csg]") {
     auto spec = basic_scene(8, 8);
     const uint32_t g = add_material(spec, glass(1.5));
@@ -386,7 +386,7 @@ TEST_CASE("CSG: a glass union of two spheres refracts at its outer surface only 
     CHECK(checked > 100);
 }
 
-TEST_CASE("CSG: light through a glass union is absorbed along its whole chord", "[csg]") {
+TEST_CASE("R75: CSG: light through a glass union is absorbed along its whole chord", "[csg]") {
     auto spec = basic_scene(8, 8);
     spec.settings.background = Color(1);
     // η = 1: no bending, so the colour is exp(−α·L) with L the chord through both spheres.
@@ -644,4 +644,77 @@ TEST_CASE("CSG: a box minus a cylinder has a round hole of the exact area; tori 
     }
     CHECK(hits > 500);
     CHECK(failures == 0);
+}
+
+TEST_CASE("R74: rays spawned from a convex CSG never re-hit it, 2^-10 to 2^10 and 10^5 away",
+          "[csg][robust]") {
+    // A lens (the intersection of two spheres) and a rotated box minus a half-space are convex:
+    // a ray leaving the surface outward cannot meet them again, and one entering must leave.
+    int rehits = 0, escapes = 0, rays = 0;
+    for (double scale : {0x1p-10, 1.0, 0x1p10})
+        for (Vec3 shift : {Vec3(0), Vec3(1e5, -1e5, 1e5)}) {
+            auto spec = basic_scene(8, 8);
+            const uint32_t red = add_material(spec, matte({1, 0, 0}));
+            ShapeSpec lens = csg(CsgOp::Intersection,
+                                 {sphere({0, 0, -0.6}, 1.2, red), sphere({0, 0, 0.6}, 1.2, red)}, red);
+            ShapeSpec cut = box({-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}, red);
+            cut.object_to_world = glm::rotate(Mat4(1.0), 0.7, Vec3(1, 2, 0));
+            ShapeSpec wedge = csg(CsgOp::Difference, {cut, plane({1, 1, 1}, -0.2, red)}, red);
+            const Mat4 place = glm::translate(Mat4(1.0), shift) * glm::scale(Mat4(1.0), Vec3(scale));
+            lens.object_to_world = place;
+            wedge.object_to_world = place * glm::translate(Mat4(1.0), Vec3(4, 0, 0));
+            spec.shapes = {lens, wedge};
+            auto scene = build(spec);
+            std::mt19937 rng(17);
+            for (int k = 0; k < 4000; ++k) {
+                const Vec3 aim = Vec3(k % 2 ? 4 : 0, 0, 0) + unit(rng) * 0.3;
+                const Vec3 from = aim + unit(rng) * 6.0;
+                const Ray ray{Vec3(place * glm::dvec4(from, 1)), Vec3(place * glm::dvec4(aim - from, 0))};
+                const auto hit = first_hit(*scene, ray);
+                if (!hit) continue;
+                ++rays;
+                const auto s = scene->geometry().surface(ray, *hit);
+                const Vec3 out = glm::normalize(s.ng + 0.9 * unit(rng));
+                const Vec3 w = glm::dot(out, s.ng) > 0 ? out : -out;
+                const auto again = first_hit(*scene, Ray{wsd::render::Geometry::offset_origin(s, w), w});
+                if (again && again->prim == hit->prim) ++rehits;
+                const Vec3 in = -w;
+                const auto through = first_hit(*scene, Ray{wsd::render::Geometry::offset_origin(s, in), in});
+                if (!through || through->prim != hit->prim) ++escapes;
+            }
+        }
+    CHECK(rays > 10000);
+    CHECK(rehits == 0);
+    CHECK(escapes == 0);
+}
+
+TEST_CASE("CSG: packets of rays give the same hits as single rays", "[csg]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    spec.shapes.push_back(
+        csg(CsgOp::Difference, {box({-1, -1, -1}, {1, 1, 1}, red), sphere({0.3, 0.2, -1}, 0.7, red)}, red));
+    spec.shapes.push_back(sphere({2, 0, 0}, 0.5, red));
+    auto scene = build(spec);
+    const auto& g = scene->geometry();
+    Ray rays[16];
+    std::optional<wsd::render::HitRecord> out[16];
+    int compared = 0;
+    for (int py = 0; py < 32; ++py)
+        for (int px = 0; px < 32; px += 4) {
+            for (int k = 0; k < 16; ++k)
+                rays[k] =
+                    Ray{{-3 + (px + k % 4) * 0.19, -3 + py * 0.19 + (k / 4) * 0.01, -6}, {0.1, 0.05, 1}};
+            RayStats stats;
+            g.intersect_packet(rays, 16, std::numeric_limits<double>::infinity(), stats, out);
+            for (int k = 0; k < 16; ++k) {
+                const auto single = first_hit(*scene, rays[k]);
+                REQUIRE(bool(single) == bool(out[k]));
+                if (!single) continue;
+                CHECK(single->t == out[k]->t);
+                CHECK(single->prim == out[k]->prim);
+                CHECK(single->member == out[k]->member);
+                ++compared;
+            }
+        }
+    CHECK(compared > 100);
 }
