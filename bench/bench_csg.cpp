@@ -2,7 +2,10 @@
 // (the same screen area as the sphere it is compared with): a sphere; a lens (the intersection of
 // two spheres); a box minus a sphere; a union of three spheres; a closed 20,000-triangle mesh
 // minus a sphere. Rays come from a 512 × 512 orthographic grid over the solid's silhouette box.
-// Each rate is the median of 5 passes taken in turn with the others. Prints measured numbers only.
+// Then the scenes of bench/scenes/{csg_intersection, csg_difference}.wsd beside the same grid of
+// spheres, built by hand (a 10×10 grid of one solid on a plane, one point light's shadows):
+// render time (wall, one render thread) per ray, camera and shadow rays, at 400×400.
+// Each number is the median of 5 passes taken in turn with the others. Prints measured numbers only.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +17,7 @@
 
 #include "render/geometry.h"
 #include "render/math.h"
+#include "render/renderer.h"
 
 using namespace wsd::render;
 
@@ -101,6 +105,77 @@ std::unique_ptr<Geometry> make(ShapeSpec s) {
     return g;
 }
 
+// The 10×10 grid of bench/scenes/sphere.wsd with each cell made by `cell(x, y)`.
+SceneSpec grid_scene(const std::function<ShapeSpec(double, double)>& cell) {
+    SceneSpec spec;
+    spec.settings.width = spec.settings.height = 400;
+    spec.camera.position = {0, 0, -14};
+    spec.camera.look_at = {0, 0, 0};
+    spec.camera.fov_degrees = 45;
+    LightSpec light;
+    light.position = {-6, 8, -12};
+    spec.lights.push_back(light);
+    MaterialSpec m;
+    m.color = {0.8, 0.7, 0.6};
+    m.specular = 0.3;
+    spec.materials.push_back(m);
+    m.color = {0.9, 0.9, 0.9};
+    m.specular = 0;
+    spec.materials.push_back(m);
+    ShapeSpec floor;
+    floor.kind = ShapeKind::Plane;
+    floor.normal = {0, 0, -1};
+    floor.distance = -1;
+    floor.material = 1;
+    spec.shapes.push_back(floor);
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j) {
+            ShapeSpec s = cell(i - 4.5, j - 4.5);
+            s.material = 0;
+            spec.shapes.push_back(s);
+        }
+    return spec;
+}
+
+void render_scenes() {
+    struct Scn {
+        std::string name;
+        std::shared_ptr<const Scene> scene;
+        double per_ray[5] = {};
+    };
+    std::vector<Scn> scenes;
+    auto add = [&](std::string name, const SceneSpec& spec) {
+        std::vector<SpecError> errors;
+        auto sc = build_scene(spec, errors, true, 1);
+        if (!sc) std::exit(1);
+        scenes.push_back({std::move(name), sc});
+    };
+    add("spheres (sphere.wsd)", grid_scene([](double x, double y) { return sphere({x, y, 0}, 0.45); }));
+    add("lenses (csg_intersection.wsd)", grid_scene([](double x, double y) {
+            return csg(CsgOp::Intersection, {sphere({x, y, -0.15}, 0.45), sphere({x, y, 0.15}, 0.45)});
+        }));
+    add("dented boxes (csg_difference.wsd)", grid_scene([](double x, double y) {
+            return csg(CsgOp::Difference,
+                       {box({x - 0.4, y - 0.4, -0.4}, {x + 0.4, y + 0.4, 0.4}), sphere({x, y, -0.45}, 0.3)});
+        }));
+    RenderOptions opt;
+    opt.threads = 1;
+    for (int pass = 0; pass < 5; ++pass)
+        for (Scn& s : scenes) {
+            const RenderResult r = render(*s.scene, opt);
+            const double rays = static_cast<double>(r.stats.camera_rays + r.stats.shadow_rays);
+            s.per_ray[pass] = r.render_seconds / rays;
+        }
+    std::printf("400×400 renders, one thread, render time per camera or shadow ray (median of 5):\n");
+    std::sort(scenes[0].per_ray, scenes[0].per_ray + 5);
+    const double base = scenes[0].per_ray[2];
+    for (Scn& s : scenes) {
+        std::sort(s.per_ray, s.per_ray + 5);
+        std::printf("  %-36s %6.1f ns/ray  %5.2f× the spheres'\n", s.name.c_str(), 1e9 * s.per_ray[2],
+                    s.per_ray[2] / base);
+    }
+}
+
 }  // namespace
 
 int main() {
@@ -140,5 +215,6 @@ int main() {
         std::printf("  %-36s %8.2f Mrays/s  %6.1f ns/ray  %5.2f× the sphere's time  (%zu hits)\n",
                     c.name.c_str(), c.best[2] / 1e6, 1e9 / c.best[2], base / c.best[2], c.hits);
     }
+    render_scenes();
     return 0;
 }
