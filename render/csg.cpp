@@ -306,6 +306,62 @@ bool csg_local_bounds(const CsgSpec& csg, Vec3& lo, Vec3& hi) {
 
 namespace detail {
 
+namespace {
+
+constexpr uint32_t kNone = 0xffffffffu;
+
+// Applies the event made of crossings xs[i, j) to the members' states, and returns the member
+// whose surface the event shows (kNone when no member's state changed). `inside` is the result
+// before the event.
+uint32_t apply_event(const CsgSolid& solid, Sweep& sw, size_t i, size_t j, bool inside) {
+    if (j == i + 1) {  // the common case: one crossing
+        const CsgCrossing& x = sw.xs[i];
+        const int v = sw.state[x.member] + x.delta;
+        const int8_t after = static_cast<int8_t>(v < 0 ? 0 : (v > 1 ? 1 : v));
+        if (after == sw.state[x.member]) return kNone;
+        sw.state[x.member] = after;
+        return x.member;
+    }
+    sw.touched.clear();
+    for (size_t k = i; k < j; ++k) {
+        const CsgCrossing& x = sw.xs[k];
+        if (std::find(sw.touched.begin(), sw.touched.end(), x.member) == sw.touched.end())
+            sw.touched.push_back(x.member);
+        sw.net[x.member] = static_cast<int8_t>(sw.net[x.member] + x.delta);
+    }
+    // A member crossed several times in one event (a mesh edge or vertex shared by faces that
+    // all report it) changes its state once: by the sign of the net crossing.
+    auto after_of = [&](uint32_t m) {
+        const int v = sw.state[m] + (sw.net[m] > 0 ? 1 : (sw.net[m] < 0 ? -1 : 0));
+        return static_cast<int8_t>(v < 0 ? 0 : (v > 1 ? 1 : v));
+    };
+    // Candidates in priority order: subtracting members first, then the member written first.
+    std::sort(sw.touched.begin(), sw.touched.end(), [&](uint32_t a, uint32_t b) {
+        const bool sa = solid.members[a].subtracted, sb = solid.members[b].subtracted;
+        return sa != sb ? sa : a < b;
+    });
+    uint32_t chosen = kNone, first = kNone;
+    for (uint32_t m : sw.touched) {
+        const int8_t after = after_of(m), before = sw.state[m];
+        if (after == before) continue;
+        if (first == kNone) first = m;
+        sw.state[m] = after;
+        const bool alone = eval(solid, sw.state.data(), 0) != inside;
+        sw.state[m] = before;
+        if (alone) {
+            chosen = m;
+            break;
+        }
+    }
+    for (uint32_t m : sw.touched) {
+        sw.state[m] = after_of(m);
+        sw.net[m] = 0;
+    }
+    return chosen != kNone ? chosen : first;
+}
+
+}  // namespace
+
 bool test_csg(const Impl&, const CsgPrim& q, const RayPre& r, double limit, Counters& c, HitRecord& h) {
     const CsgSolid& solid = *q.solid;
     thread_local Sweep sw;
@@ -315,7 +371,7 @@ bool test_csg(const Impl&, const CsgPrim& q, const RayPre& r, double limit, Coun
     sw.net.assign(n, 0);
     for (uint32_t i = 0; i < n; ++i)
         sw.state[i] = static_cast<int8_t>(member_crossings(solid.members[i], i, r, sw.xs, c));
-    if (sw.xs.empty()) return false;
+    if (std::none_of(sw.xs.begin(), sw.xs.end(), [](const CsgCrossing& x) { return x.t > 0; })) return false;
     std::sort(sw.xs.begin(), sw.xs.end(), [](const CsgCrossing& a, const CsgCrossing& b) {
         if (a.t != b.t) return a.t < b.t;
         if (a.member != b.member) return a.member < b.member;
@@ -327,50 +383,13 @@ bool test_csg(const Impl&, const CsgPrim& q, const RayPre& r, double limit, Coun
         // One event: crossings chained by overlapping error bounds (the coincident-surface rule).
         size_t j = i + 1;
         while (j < sw.xs.size() && sw.xs[j].t - sw.xs[j - 1].t <= sw.xs[j].err + sw.xs[j - 1].err) ++j;
-        bool at_origin = false;
-        sw.touched.clear();
-        for (size_t k = i; k < j; ++k) {
-            const CsgCrossing& x = sw.xs[k];
-            at_origin = at_origin || x.at_origin;
-            if (sw.net[x.member] == 0 &&
-                std::find(sw.touched.begin(), sw.touched.end(), x.member) == sw.touched.end())
-                sw.touched.push_back(x.member);
-            sw.net[x.member] = static_cast<int8_t>(sw.net[x.member] + x.delta);
-        }
-        // A member crossed several times in one event (a mesh edge or vertex shared by faces
-        // that all report it) changes its state once: by the sign of the net crossing.
-        auto after_of = [&](uint32_t m) {
-            const int v = sw.state[m] + (sw.net[m] > 0 ? 1 : (sw.net[m] < 0 ? -1 : 0));
-            return static_cast<int8_t>(v < 0 ? 0 : (v > 1 ? 1 : v));
-        };
-        // Candidates in priority order: subtracting members first, then the member written first.
-        std::sort(sw.touched.begin(), sw.touched.end(), [&](uint32_t a, uint32_t b) {
-            const bool sa = solid.members[a].subtracted, sb = solid.members[b].subtracted;
-            return sa != sb ? sa : a < b;
-        });
-        uint32_t chosen = 0xffffffffu, first = 0xffffffffu;
-        for (uint32_t m : sw.touched) {
-            const int8_t after = after_of(m);
-            if (after == sw.state[m]) continue;
-            if (first == 0xffffffffu) first = m;
-            const int8_t before = sw.state[m];
-            sw.state[m] = after;
-            const bool alone = eval(solid, sw.state.data(), 0) != inside;
-            sw.state[m] = before;
-            if (alone) {
-                chosen = m;
-                break;
-            }
-        }
-        if (chosen == 0xffffffffu) chosen = first;
-        for (uint32_t m : sw.touched) {
-            sw.state[m] = after_of(m);
-            sw.net[m] = 0;
-        }
-        const bool now = eval(solid, sw.state.data(), 0);
-        if (now != inside && chosen != 0xffffffffu) {
+        const uint32_t chosen = apply_event(solid, sw, i, j, inside);
+        const bool now = chosen != kNone ? eval(solid, sw.state.data(), 0) : inside;
+        if (now != inside) {
             // The chosen member's crossing in its net direction, the first along the ray.
             const bool entering = sw.state[chosen] != 0;
+            bool at_origin = false;
+            for (size_t k = i; k < j; ++k) at_origin = at_origin || sw.xs[k].at_origin;
             size_t k = i;
             while (k < j && !(sw.xs[k].member == chosen && (sw.xs[k].delta > 0) == entering)) ++k;
             const CsgCrossing& x = sw.xs[k < j ? k : i];
