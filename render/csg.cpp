@@ -420,11 +420,13 @@ void csg_surface(const Geometry::Impl&, const CsgPrim& q, const ShapeInfo&, cons
         s.ng = -s.ng;
         s.ns = -s.ns;
     }
+    s.p_object = q.solid->frame.inv_point(s.p);
     s.material = member_material(m, s.material);
 }
 
-std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const Transform&) {
+std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const Transform& x) {
     auto solid = std::make_shared<CsgSolid>();
+    solid->frame = x;
     SolidBuilder sb{b, *solid};
     // The CSG's own material is what its members inherit (csg_surface resolves it).
     ShapeSpec top = s;

@@ -67,6 +67,9 @@ struct CsgNode {
 struct CsgSolid {
     std::vector<CsgMember> members;
     std::vector<CsgNode> nodes;
+    // The CSG shape's own frame to world: surface points for textures and bumps are given in it
+    // (SurfaceHit::p_object), as every shape gives them in its own object frame.
+    Transform frame;
 };
 
 struct CsgPrim {

@@ -718,3 +718,23 @@ TEST_CASE("CSG: packets of rays give the same hits as single rays", "[csg]") {
         }
     CHECK(compared > 100);
 }
+
+TEST_CASE("CSG surfaces give p_object in the CSG's own frame (textures and bumps follow the solid)",
+          "[csg]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    ShapeSpec ball = sphere({0, 0, 0}, 1, red);
+    ball.object_to_world = glm::translate(Mat4(1.0), Vec3(1, 0, 0)) * glm::scale(Mat4(1.0), Vec3(2, 1, 1));
+    ShapeSpec solid = csg(CsgOp::Union, {ball}, red);
+    solid.object_to_world =
+        glm::translate(Mat4(1.0), Vec3(5, 0, 0)) * glm::rotate(Mat4(1.0), 1.0, Vec3(0, 1, 0));
+    spec.shapes.push_back(solid);
+    auto scene = build(spec);
+    const Ray ray{{5, 10, 0.1}, {0, -1, 0}};
+    const auto h = first_hit(*scene, ray);
+    REQUIRE(h);
+    const auto s = scene->geometry().surface(ray, *h);
+    const Vec3 expect = Vec3(glm::inverse(solid.object_to_world) * glm::dvec4(s.p, 1.0));
+    CHECK(glm::length(s.p_object - expect) < 1e-12);
+    CHECK(s.ng.y > 0.5);
+}
