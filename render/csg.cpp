@@ -153,6 +153,14 @@ struct SolidBuilder {
             return 0;
         }
         if (!leaf(s, m, mem, where)) return 0;
+        const Extent e = extent_of(s, parent);
+        if (!e.unbounded && is_finite(e.lo) && is_finite(e.hi)) {
+            // Padded like the BVH's boxes, so that a crossing accepted at a rim is inside.
+            const Vec3 pad = gamma(8) * (abs3(e.lo) + abs3(e.hi) + (e.hi - e.lo));
+            mem.bounded = true;
+            mem.wlo = e.lo - pad;
+            mem.whi = e.hi + pad;
+        }
         solid.members.push_back(std::move(mem));
         return ~static_cast<int32_t>(solid.members.size() - 1);
     }

@@ -300,6 +300,10 @@ void build_node(CsgMesh& mesh, std::vector<uint32_t>& ids, const std::vector<Vec
 
 int member_crossings(const CsgMember& m, uint32_t index, const RayPre& r, std::vector<CsgCrossing>& out,
                      Counters& c) {
+    if (m.bounded && m.kind != CsgMemberKind::Mesh) {  // a mesh's own BVH starts with this test
+        ++c.boxes;
+        if (!line_meets_box(r, m.wlo, m.whi)) return 0;
+    }
     switch (m.kind) {
         case CsgMemberKind::Sphere:
             ++c.sph_tests;

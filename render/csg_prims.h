@@ -54,6 +54,8 @@ struct CsgMember {
     // material the whole solid has where it is used (member_material).
     uint32_t material = kInheritMaterial;
     bool subtracted = false;  // in the subtracted position of a difference (an odd number of times)
+    bool bounded = false;     // wlo, whi bound the member in world space (all but half-spaces)
+    Vec3 wlo{0}, whi{0};
     uint32_t tag = 0;
 };
 
