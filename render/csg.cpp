@@ -13,8 +13,6 @@ namespace wsd::render {
 
 namespace {
 
-constexpr uint32_t kFlipBit = 1u << 31;
-
 const char* kind_word(ShapeKind k) {
     switch (k) {
         case ShapeKind::Sphere:
@@ -406,7 +404,7 @@ bool test_csg(const Impl&, const CsgPrim& q, const RayPre& r, double limit, Coun
                 h.prim = q.prim;
                 h.b1 = x.b1;
                 h.b2 = x.b2;
-                h.member = x.member | (entering != now ? kFlipBit : 0u);
+                h.member = x.member | (entering != now ? kCsgFlipBit : 0u);
                 h.member_slot = x.sub;
                 return true;
             }
@@ -421,9 +419,9 @@ bool test_csg(const Impl&, const CsgPrim& q, const RayPre& r, double limit, Coun
 
 void csg_surface(const Geometry::Impl&, const CsgPrim& q, const ShapeInfo&, const Ray& ray,
                  const HitRecord& hit, SurfaceHit& s) {
-    const CsgMember& m = q.solid->members[hit.member & ~kFlipBit];
+    const CsgMember& m = q.solid->members[hit.member & ~kCsgFlipBit];
     detail::member_surface(m, ray, hit.t, hit.member_slot, hit.b1, hit.b2, s);
-    if (hit.member & kFlipBit) {
+    if (hit.member & kCsgFlipBit) {
         // The member's inside is the solid's outside here (a difference's cut surface).
         s.ng = -s.ng;
         s.ns = -s.ns;

@@ -74,6 +74,12 @@ struct CsgSolid {
     Transform frame;
 };
 
+// A hit on a CSG solid (HitRecord): prim is the solid's canonical id; member the index of the
+// member whose surface it is, with kCsgFlipBit set where the member's inside is the solid's
+// outside (a difference's cut surface: csg_surface turns the normal); member_slot and b1, b2 the
+// member's own parameters (box face, mesh triangle and barycentrics, quadric part).
+inline constexpr uint32_t kCsgFlipBit = 1u << 31;
+
 struct CsgPrim {
     CsgOp op = CsgOp::Union;
     uint32_t prim = 0;  // canonical id
