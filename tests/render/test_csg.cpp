@@ -459,14 +459,17 @@ TEST_CASE("CSG: shadows through a glass member of an opaque solid", "[csg]") {
     // Opaque box on the left, glass box on the right, one solid.
     spec.shapes.push_back(
         csg(CsgOp::Union, {box({-3, 1, -1}, {-1, 2, 1}, red), box({1, 1, -1}, {3, 2, 1}, g)}, red));
-    spec.lights.push_back(point_light({0, 50, 0}));
-    RayProbe probe(spec);
-    const Color under_opaque = probe.trace({-2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
-    const Color under_glass = probe.trace({2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
-    const Color open = probe.trace({0, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
-    CHECK(under_opaque.x == Approx(0.0).margin(1e-12));
-    CHECK(open.x > 0.9);
-    CHECK(under_glass.x == Approx(open.x).epsilon(1e-3));
+    // A point light, then a small area light (its shadow rays go through shafts).
+    for (bool area : {false, true}) {
+        spec.lights = {area ? area_light({0, 50, 0}, {0.2, 0, 0}, {0, 0, 0.2}, 4, 4) : point_light({0, 50, 0})};
+        RayProbe probe(spec);
+        const Color under_opaque = probe.trace({-2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
+        const Color under_glass = probe.trace({2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
+        const Color open = probe.trace({0, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
+        CHECK(under_opaque.x == Approx(0.0).margin(1e-12));
+        CHECK(open.x > 0.9);
+        CHECK(under_glass.x == Approx(open.x).epsilon(1e-3));
+    }
 }
 
 TEST_CASE("CSG: a closed mesh member works; an open one is an error naming its edge", "[csg]") {
