@@ -56,8 +56,32 @@ struct Extent {
     }
 };
 
+Extent extent_of(const ShapeSpec& s, const Mat4& parent, const SceneSpec& spec);
+
+// The extent of `op` over `members` written in the frame `m`.
+Extent combined(CsgOp op, const std::vector<ShapeSpec>& members, const Mat4& m, const SceneSpec& spec) {
+    if (members.empty()) return {};
+    Extent e = extent_of(members[0], m, spec);
+    for (size_t i = 1; i < members.size() && op != CsgOp::Difference; ++i) {
+        const Extent o = extent_of(members[i], m, spec);
+        if (op == CsgOp::Union) {
+            e.unbounded = e.unbounded || o.unbounded;
+            e.lo = glm::min(e.lo, o.lo);
+            e.hi = glm::max(e.hi, o.hi);
+        } else if (o.unbounded) {
+            continue;
+        } else if (e.unbounded) {
+            e = o;
+        } else {
+            e.lo = glm::max(e.lo, o.lo);
+            e.hi = glm::min(e.hi, o.hi);
+        }
+    }
+    return e;
+}
+
 // The extent of shape `s` placed by `parent` (the frame it is written in).
-Extent extent_of(const ShapeSpec& s, const Mat4& parent) {
+Extent extent_of(const ShapeSpec& s, const Mat4& parent, const SceneSpec& spec) {
     const Mat4 m = parent * s.object_to_world;
     Extent e;
     switch (s.kind) {
@@ -82,27 +106,13 @@ Extent extent_of(const ShapeSpec& s, const Mat4& parent) {
             e.add_corners(m * frame, Vec3(-r, torus ? -q.r1 : 0, -r), Vec3(r, torus ? q.r1 : q.h, r));
             break;
         }
-        case ShapeKind::Csg: {
-            if (!s.csg || s.csg->members.empty()) break;
-            const auto& ms = s.csg->members;
-            e = extent_of(ms[0], m);
-            for (size_t i = 1; i < ms.size() && s.csg->op != CsgOp::Difference; ++i) {
-                const Extent o = extent_of(ms[i], m);
-                if (s.csg->op == CsgOp::Union) {
-                    e.unbounded = e.unbounded || o.unbounded;
-                    e.lo = glm::min(e.lo, o.lo);
-                    e.hi = glm::max(e.hi, o.hi);
-                } else if (o.unbounded) {
-                    continue;
-                } else if (e.unbounded) {
-                    e = o;
-                } else {
-                    e.lo = glm::max(e.lo, o.lo);
-                    e.hi = glm::min(e.hi, o.hi);
-                }
-            }
+        case ShapeKind::Csg:
+            if (s.csg) e = combined(s.csg->op, s.csg->members, m, spec);
             break;
-        }
+        case ShapeKind::Instance:
+            if (s.prototype < spec.prototypes.size())
+                e = combined(CsgOp::Union, spec.prototypes[s.prototype].shapes, m, spec);
+            break;
         default:  // planes; other kinds are rejected when built
             e.unbounded = true;
             break;
@@ -112,8 +122,12 @@ Extent extent_of(const ShapeSpec& s, const Mat4& parent) {
 
 bool any_transmissive(const SceneSpec& spec, const ShapeSpec& s, uint32_t enclosing) {
     const uint32_t mat = s.material != kInheritMaterial ? s.material : enclosing;
-    if (s.kind == ShapeKind::Csg && s.csg) {
-        for (const ShapeSpec& m : s.csg->members)
+    const std::vector<ShapeSpec>* inner = nullptr;
+    if (s.kind == ShapeKind::Csg && s.csg) inner = &s.csg->members;
+    if (s.kind == ShapeKind::Instance && s.prototype < spec.prototypes.size())
+        inner = &spec.prototypes[s.prototype].shapes;
+    if (inner) {
+        for (const ShapeSpec& m : *inner)
             if (any_transmissive(spec, m, mat)) return true;
         return false;
     }
@@ -140,7 +154,16 @@ struct SolidBuilder {
             return 0;
         }
         const uint32_t mat = s.material != kInheritMaterial ? s.material : enclosing;
-        if (s.kind == ShapeKind::Csg) return add_node(s, m, mat, subtracted, where);
+        if (s.kind == ShapeKind::Csg) {
+            if (!s.csg) return fail(where, "a CSG needs at least one member"), 0;
+            return add_node(s.csg->op, s.csg->members, m, mat, subtracted, where);
+        }
+        if (s.kind == ShapeKind::Instance) {
+            // An `object` of a solid value: its prototype's shapes, placed by the instance.
+            if (s.prototype >= b.spec.prototypes.size())
+                return fail(where, "prototype index " + std::to_string(s.prototype) + " is out of range"), 0;
+            return add_node(CsgOp::Union, b.spec.prototypes[s.prototype].shapes, m, mat, subtracted, where);
+        }
         CsgMember mem;
         mem.shape_kind = s.kind;
         mem.material = mat;
@@ -151,7 +174,7 @@ struct SolidBuilder {
             return 0;
         }
         if (!leaf(s, m, mem, where)) return 0;
-        const Extent e = extent_of(s, parent);
+        const Extent e = extent_of(s, parent, b.spec);
         if (!e.unbounded && is_finite(e.lo) && is_finite(e.hi)) {
             // Padded like the BVH's boxes, so that a crossing accepted at a rim is inside.
             const Vec3 pad = gamma(8) * (abs3(e.lo) + abs3(e.hi) + (e.hi - e.lo));
@@ -163,19 +186,20 @@ struct SolidBuilder {
         return ~static_cast<int32_t>(solid.members.size() - 1);
     }
 
-    int32_t add_node(const ShapeSpec& s, const Mat4& m, uint32_t mat, bool subtracted,
-                     const std::string& where) {
-        if (!s.csg || s.csg->members.empty()) {
-            fail(where, "a CSG needs at least one member");
+    // A node `op` over `members` written in the frame `m`; returns its index.
+    int32_t add_node(CsgOp op, const std::vector<ShapeSpec>& members, const Mat4& m, uint32_t mat,
+                     bool subtracted, const std::string& where) {
+        if (members.empty()) {
+            fail(where.empty() ? "CSG" : where, "a CSG needs at least one member");
             return 0;
         }
         const int32_t index = static_cast<int32_t>(solid.nodes.size());
-        solid.nodes.push_back(CsgNode{s.csg->op, {}});
+        solid.nodes.push_back(CsgNode{op, {}});
         std::vector<int32_t> children;
-        for (size_t i = 0; i < s.csg->members.size(); ++i) {
-            const bool sub = subtracted != (s.csg->op == CsgOp::Difference && i > 0);
+        for (size_t i = 0; i < members.size(); ++i) {
+            const bool sub = subtracted != (op == CsgOp::Difference && i > 0);
             const std::string at = (where.empty() ? "CSG member " : where + ".") + std::to_string(i + 1);
-            children.push_back(add(s.csg->members[i], m, mat, sub, at));
+            children.push_back(add(members[i], m, mat, sub, at));
         }
         solid.nodes[size_t(index)].children = std::move(children);
         return index;
@@ -299,11 +323,8 @@ bool csg_transmissive(const SceneSpec& spec, const CsgSpec& csg, uint32_t solid_
     return false;
 }
 
-bool csg_local_bounds(const CsgSpec& csg, Vec3& lo, Vec3& hi) {
-    ShapeSpec s;
-    s.kind = ShapeKind::Csg;
-    s.csg = std::make_shared<const CsgSpec>(csg);
-    const Extent e = extent_of(s, Mat4(1.0));
+bool csg_local_bounds(const SceneSpec& spec, const CsgSpec& csg, Vec3& lo, Vec3& hi) {
+    const Extent e = combined(csg.op, csg.members, Mat4(1.0), spec);
     if (e.unbounded || !is_finite(e.lo) || !is_finite(e.hi)) return false;
     lo = e.lo;
     hi = e.hi;
@@ -435,11 +456,13 @@ std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const
     solid->frame = x;
     SolidBuilder sb{b, *solid};
     // The CSG's own material is what its members inherit (csg_surface resolves it).
-    ShapeSpec top = s;
-    top.material = kInheritMaterial;
-    sb.add_node(top, s.object_to_world, kInheritMaterial, false, "");
+    if (!s.csg) {
+        b.error("CSG has no members");
+        return std::nullopt;
+    }
+    sb.add_node(s.csg->op, s.csg->members, s.object_to_world, kInheritMaterial, false, "");
     if (!sb.ok) return std::nullopt;
-    const Extent e = extent_of(top, Mat4(1.0));
+    const Extent e = extent_of(s, Mat4(1.0), b.spec);
     if (e.unbounded || !is_finite(e.lo) || !is_finite(e.hi)) {
         b.error(
             "this CSG is unbounded: a plane member must be intersected with or subtracted from a bounded "

@@ -98,7 +98,7 @@ bool csg_transmissive(const SceneSpec& spec, const CsgSpec& csg, uint32_t solid_
 
 // The CSG's bounds in its own frame (before s.object_to_world); false when unbounded (a plane
 // not cut down by a bounded member) or invalid.
-bool csg_local_bounds(const CsgSpec& csg, Vec3& lo, Vec3& hi);
+bool csg_local_bounds(const SceneSpec& spec, const CsgSpec& csg, Vec3& lo, Vec3& hi);
 
 // A crossing of a ray's line with a member's surface (render/csg_members.cpp).
 struct CsgCrossing {

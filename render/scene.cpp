@@ -157,7 +157,7 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
             }
             case ShapeKind::Csg: {
                 Vec3 clo, chi;
-                if (sh.csg && csg_local_bounds(*sh.csg, clo, chi))
+                if (sh.csg && csg_local_bounds(spec, *sh.csg, clo, chi))
                     add_box_corners(m, clo, chi, lo, hi);
                 else
                     transmissive_unbounded_ = true;

@@ -461,7 +461,8 @@ TEST_CASE("CSG: shadows through a glass member of an opaque solid", "[csg]") {
         csg(CsgOp::Union, {box({-3, 1, -1}, {-1, 2, 1}, red), box({1, 1, -1}, {3, 2, 1}, g)}, red));
     // A point light, then a small area light (its shadow rays go through shafts).
     for (bool area : {false, true}) {
-        spec.lights = {area ? area_light({0, 50, 0}, {0.2, 0, 0}, {0, 0, 0.2}, 4, 4) : point_light({0, 50, 0})};
+        spec.lights = {area ? area_light({0, 50, 0}, {0.2, 0, 0}, {0, 0, 0.2}, 4, 4)
+                            : point_light({0, 50, 0})};
         RayProbe probe(spec);
         const Color under_opaque = probe.trace({-2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
         const Color under_glass = probe.trace({2, 0.5, -10}, glm::normalize(Vec3(0, -0.5, 10)));
@@ -740,4 +741,26 @@ TEST_CASE("CSG surfaces give p_object in the CSG's own frame (textures and bumps
     const Vec3 expect = Vec3(glm::inverse(solid.object_to_world) * glm::dvec4(s.p, 1.0));
     CHECK(glm::length(s.p_object - expect) < 1e-12);
     CHECK(s.ng.y > 0.5);
+}
+
+TEST_CASE("CSG: an object instance of a solid is a member, its material inherited from the instance",
+          "[csg]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0})),
+                   steel = add_material(spec, matte({0.5, 0.5, 0.5}));
+    wsd::render::PrototypeSpec proto;
+    proto.shapes.push_back(inherit(sphere({0, 0, 0}, 0.5, 0)));
+    spec.prototypes.push_back(proto);
+    ShapeSpec hole;
+    hole.kind = ShapeKind::Instance;
+    hole.prototype = 0;
+    hole.material = steel;
+    hole.object_to_world = glm::translate(Mat4(1.0), Vec3(0, 0, -1));
+    spec.shapes.push_back(csg(CsgOp::Difference, {box({-1, -1, -1}, {1, 1, 1}, red), hole}, red));
+    auto scene = build(spec);
+    const Ray ray{{0, 0, -5}, {0, 0, 1}};
+    const auto h = first_hit(*scene, ray);
+    REQUIRE(h);
+    CHECK(h->t == Approx(4.5).epsilon(1e-12));
+    CHECK(scene->geometry().surface(ray, *h).material == steel);
 }
