@@ -148,7 +148,7 @@ int plane_crossings(const CsgMember& m, uint32_t index, const Local& l, std::vec
     return leaving ? 1 : 0;
 }
 
-// A closed cylinder or cone, or a torus: its crossings alternate entering and leaving. The error
+// A closed cylinder or cone, or a torus. The error
 // of t is the origin's error (and the surface point's own) across the surface, over the
 // direction's component along the normal.
 int quadric_member_crossings(const CsgMember& m, uint32_t index, const Local& l,
@@ -165,7 +165,12 @@ int quadric_member_crossings(const CsgMember& m, uint32_t index, const Local& l,
         const double nd = std::abs(glm::dot(qp.n, l.d));
         const double err = (across + gamma(32) * (scale + glm::length(l.o))) / std::max(nd, gamma(4) * len) +
                            gamma(16) * std::abs(t[i]);
-        push(out, t[i], err, index, uint32_t(part[i]), 0, 0, (i % 2 == 0) ? 1 : -1, false);
+        // Entering or leaving from the side the line crosses the surface; from the alternation
+        // where it barely crosses (near a tangent). A line through a rim may report the rim from
+        // both parts, or from neither: the sides keep the count right, the alternation would not.
+        const double side = glm::dot(qp.n, l.d);
+        const int8_t delta = std::abs(side) > 1e-6 * len ? (side < 0 ? 1 : -1) : ((i % 2 == 0) ? 1 : -1);
+        push(out, t[i], err, index, uint32_t(part[i]), 0, 0, delta, false);
     }
     return 0;
 }

@@ -764,3 +764,35 @@ TEST_CASE("CSG: an object instance of a solid is a member, its material inherite
     CHECK(h->t == Approx(4.5).epsilon(1e-12));
     CHECK(scene->geometry().surface(ray, *h).material == steel);
 }
+
+TEST_CASE("R76: CSG: a line through a cylinder's rim keeps the inside count right", "[csg][robust]") {
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    ShapeSpec can;
+    can.kind = ShapeKind::Cylinder;
+    can.base = {0, 0, 0};
+    can.cap = {0, 1, 0};
+    can.radius = 1;
+    can.material = red;
+    spec.shapes.push_back(csg(CsgOp::Union, {can}, red));
+    auto scene = build(spec);
+    int wrong = 0;
+    for (int k = 0; k < 64; ++k) {
+        const double a = 2 * 3.14159265358979323846 * k / 64;
+        const Vec3 rim(std::cos(a), 1, std::sin(a));
+        // Down and inward through the rim, seen from outside and from inside the solid.
+        const Vec3 d = glm::normalize(Vec3(-0.5 * rim.x, -1, -0.5 * rim.z));
+        for (double back : {-2.0, 0.3}) {
+            const Ray ray{rim + back * d, d};
+            const auto h = first_hit(*scene, ray);
+            if (!h) {
+                ++wrong;
+                continue;
+            }
+            const auto s = scene->geometry().surface(ray, *h);
+            const bool leaving = glm::dot(s.ng, d) > 0;
+            if (leaving != (back > 0)) ++wrong;
+        }
+    }
+    CHECK(wrong == 0);
+}
