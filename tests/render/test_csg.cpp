@@ -796,3 +796,38 @@ TEST_CASE("R76: CSG: a line through a cylinder's rim keeps the inside count righ
     }
     CHECK(wrong == 0);
 }
+
+TEST_CASE("R73: CSG: two closed meshes touching face to face make one solid", "[csg][robust]") {
+    // Mesh vertices are stored as floats in world space: 10³ from the origin they are rounded to
+    // about 6e-5, so distances are compared to that.
+    auto spec = basic_scene(8, 8);
+    const uint32_t red = add_material(spec, matte({1, 0, 0}));
+    ShapeSpec left = mesh_shape(cube_mesh(false), red), right = mesh_shape(cube_mesh(true), red);
+    left.object_to_world = glm::translate(Mat4(1.0), Vec3(-1, -0.5, -0.5));
+    right.object_to_world = glm::translate(Mat4(1.0), Vec3(0, -0.5, -0.5));
+    ShapeSpec solid = csg(CsgOp::Union, {left, right}, red);
+    const Mat4 m = placed({2, -1, 3}, 40, {-300, 700, 1000});
+    solid.object_to_world = m;
+    spec.shapes.push_back(solid);
+    auto scene = build(spec);
+    auto world = [&](Vec3 p, double w) { return Vec3(m * glm::dvec4(p, w)); };
+    int bad = 0, total = 0;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.45, 0.45);
+    for (int k = 0; k < 2000; ++k) {
+        const double y = u(rng);
+        // Along the shared face from outside and from inside, and across it.
+        const Ray outside{world({0, y, -5}, 1), world({0, 0, 1}, 0)};
+        const auto h1 = first_hit(*scene, outside);
+        ++total;
+        if (!h1 || std::abs(h1->t - 4.5) > 1e-4) ++bad;
+        const Ray within{world({0, y, 0}, 1), world({0, 0, 1}, 0)};
+        const auto h2 = first_hit(*scene, within);
+        if (!h2 || std::abs(h2->t - 0.5) > 1e-4) ++bad;
+        const Ray across{world({-0.7, y, u(rng)}, 1), world({1, 0.01, 0}, 0)};
+        const auto h3 = first_hit(*scene, across);
+        if (!h3 || std::abs(h3->t - 1.7) > 1e-4) ++bad;
+    }
+    CHECK(total == 2000);
+    CHECK(bad == 0);
+}
