@@ -9,6 +9,10 @@
 // rounding error is no surface, and the surface shown at a coincident boundary is that of the
 // member whose crossing alone changes the result; when several or none do, a subtracting member
 // (one in a difference's subtracted position) is preferred, then the member written first.
+//
+// Shadow rays: a solid with any transmissive surface (a member's material) is a transmissive
+// entry, so opaque-only queries pass it and the transmittance walk meets its boundary surfaces in
+// order, each with its member's material: an opaque member's surface stops the light there.
 #pragma once
 
 #include <cstdint>
