@@ -224,32 +224,46 @@ bool triangle_line(const RayPre& r, const Vec3f& v0, const Vec3f& v1, const Vec3
     return true;
 }
 
-// Whether the line meets the box anywhere (slabs over all t, widened as traversal widens them).
-bool line_meets_box(const RayPre& r, const Vec3& lo, const Vec3& hi) {
-    double tn = -std::numeric_limits<double>::infinity(), tf = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 3; ++i) {
-        if (r.d[i] == 0) {
-            if (r.o[i] < lo[i] || r.o[i] > hi[i]) return false;
-            continue;
+// The line's slab constants, made once per line: reciprocals of the direction's components.
+struct Line {
+    Vec3 o, inv;
+    bool flat[3];  // the direction's component is 0: the line stays in its slab or misses it
+    explicit Line(const RayPre& r) : o(r.o) {
+        for (int i = 0; i < 3; ++i) {
+            flat[i] = r.d[i] == 0;
+            inv[i] = flat[i] ? 0.0 : 1.0 / r.d[i];
         }
-        double t0 = (lo[i] - r.o[i]) / r.d[i], t1 = (hi[i] - r.o[i]) / r.d[i];
-        if (t0 > t1) std::swap(t0, t1);
-        tn = std::max(tn, t0);
-        tf = std::min(tf, t1);
     }
-    return tn <= tf + 2 * gamma(3) * std::max(std::abs(tn), std::abs(tf));
-}
+
+    // Whether the line meets the box anywhere (slabs over all t), widened by the rounding of the
+    // slab distances (a subtraction and a multiplication by a rounded reciprocal).
+    bool meets(const Vec3& lo, const Vec3& hi) const {
+        double tn = -std::numeric_limits<double>::infinity(), tf = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < 3; ++i) {
+            if (flat[i]) {
+                if (o[i] < lo[i] || o[i] > hi[i]) return false;
+                continue;
+            }
+            double t0 = (lo[i] - o[i]) * inv[i], t1 = (hi[i] - o[i]) * inv[i];
+            if (t0 > t1) std::swap(t0, t1);
+            tn = std::max(tn, t0);
+            tf = std::min(tf, t1);
+        }
+        return tn <= tf + 2 * gamma(4) * std::max(std::abs(tn), std::abs(tf));
+    }
+};
 
 int mesh_crossings(const CsgMember& m, uint32_t index, const RayPre& r, std::vector<CsgCrossing>& out,
                    Counters& c) {
     const CsgMesh& mesh = *m.mesh;
+    const Line line(r);
     uint32_t stack[64];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const CsgMesh::Node& node = mesh.nodes[stack[--top]];
         ++c.boxes;
-        if (!line_meets_box(r, node.lo, node.hi)) continue;
+        if (!line.meets(node.lo, node.hi)) continue;
         if (node.count == 0) {
             stack[top++] = node.first;
             stack[top++] = node.first + 1;
@@ -307,7 +321,7 @@ int member_crossings(const CsgMember& m, uint32_t index, const RayPre& r, std::v
                      Counters& c) {
     if (m.bounded && m.kind != CsgMemberKind::Mesh) {  // a mesh's own BVH starts with this test
         ++c.boxes;
-        if (!line_meets_box(r, m.wlo, m.whi)) return 0;
+        if (!Line(r).meets(m.wlo, m.whi)) return 0;
     }
     switch (m.kind) {
         case CsgMemberKind::Sphere:
