@@ -455,11 +455,12 @@ std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const
     auto solid = std::make_shared<CsgSolid>();
     solid->frame = x;
     SolidBuilder sb{b, *solid};
-    // The CSG's own material is what its members inherit (csg_surface resolves it).
     if (!s.csg) {
         b.error("CSG has no members");
         return std::nullopt;
     }
+    // Members without a material of their own keep kInheritMaterial: csg_surface gives them the
+    // CSG's (or, inside a prototype, what the CSG itself inherits).
     sb.add_node(s.csg->op, s.csg->members, s.object_to_world, kInheritMaterial, false, "");
     if (!sb.ok) return std::nullopt;
     const Extent e = extent_of(s, Mat4(1.0), b.spec);
