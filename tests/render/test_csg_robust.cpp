@@ -295,3 +295,20 @@ TEST_CASE("R73: CSG: two closed meshes touching face to face make one solid", "[
     CHECK(total == 2000);
     CHECK(bad == 0);
 }
+
+TEST_CASE("R75: CSG: a hollow glass sphere absorbs only in its shell", "[csg][robust]") {
+    auto spec = basic_scene(8, 8);
+    spec.settings.background = Color(1);
+    auto m = glass(1.0, Color(1), Color(0.9, 0.9, 0.9));
+    m.ambient = 0;
+    const uint32_t g = add_material(spec, m);
+    // The cavity's surface is the subtracted sphere's, facing into the cavity: leaving the glass.
+    spec.shapes.push_back(csg(CsgOp::Difference, {sphere({0, 0, 0}, 1, g), sphere({0, 0, 0}, 0.6, g)}, g));
+    RayProbe probe(spec);
+    for (double y : {0.0, 0.3, 0.59, 0.8}) {
+        const double outer = 2 * std::sqrt(1 - y * y);
+        const double cavity = y < 0.6 ? 2 * std::sqrt(0.36 - y * y) : 0.0;
+        const Color c = probe.trace({-5, y, 0}, {1, 0, 0});
+        CHECK(c.x == Approx(std::exp(-0.9 * (outer - cavity))).epsilon(1e-6));
+    }
+}
