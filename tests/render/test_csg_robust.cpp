@@ -189,8 +189,9 @@ TEST_CASE("R75: CSG: light through a glass union is absorbed along its whole cho
 
 TEST_CASE("R74: rays spawned from a convex CSG never re-hit it, 2^-10 to 2^10 and 10^5 away",
           "[csg][robust]") {
-    // A lens (the intersection of two spheres) and a rotated box minus a half-space are convex:
-    // a ray leaving the surface outward cannot meet them again, and one entering must leave.
+    // A lens (the intersection of two spheres), a rotated box minus a half-space, a cylinder cut
+    // by a box and a capped cone cut by a sphere are convex: a ray leaving the surface outward
+    // cannot meet them again, and one entering must leave.
     int rehits = 0, escapes = 0, rays = 0;
     for (double scale : {0x1p-10, 1.0, 0x1p10})
         for (Vec3 shift : {Vec3(0), Vec3(1e5, -1e5, 1e5)}) {
@@ -204,11 +205,25 @@ TEST_CASE("R74: rays spawned from a convex CSG never re-hit it, 2^-10 to 2^10 an
             const Mat4 place = glm::translate(Mat4(1.0), shift) * glm::scale(Mat4(1.0), Vec3(scale));
             lens.object_to_world = place;
             wedge.object_to_world = place * glm::translate(Mat4(1.0), Vec3(4, 0, 0));
-            spec.shapes = {lens, wedge};
+            ShapeSpec can;
+            can.kind = ShapeKind::Cylinder;
+            can.base = {0, -0.6, 0};
+            can.cap = {0.2, 0.6, 0.1};
+            can.radius = 0.4;
+            can.material = red;
+            ShapeSpec tip = can;
+            tip.kind = ShapeKind::Cone;
+            tip.cap_radius = 0.1;
+            ShapeSpec pill =
+                csg(CsgOp::Intersection, {can, box({-0.5, -0.3, -0.5}, {0.5, 0.5, 0.3}, red)}, red);
+            ShapeSpec nib = csg(CsgOp::Intersection, {tip, sphere({0, 0, 0}, 0.55, red)}, red);
+            pill.object_to_world = place * glm::translate(Mat4(1.0), Vec3(0, 4, 0));
+            nib.object_to_world = place * glm::translate(Mat4(1.0), Vec3(4, 4, 0));
+            spec.shapes = {lens, wedge, pill, nib};
             auto scene = build(spec);
             std::mt19937 rng(17);
             for (int k = 0; k < 4000; ++k) {
-                const Vec3 aim = Vec3(k % 2 ? 4 : 0, 0, 0) + unit(rng) * 0.3;
+                const Vec3 aim = Vec3(k % 2 ? 4 : 0, (k / 2) % 2 ? 4 : 0, 0) + unit(rng) * 0.3;
                 const Vec3 from = aim + unit(rng) * 6.0;
                 const Ray ray{Vec3(place * glm::dvec4(from, 1)), Vec3(place * glm::dvec4(aim - from, 0))};
                 const auto hit = first_hit(*scene, ray);
