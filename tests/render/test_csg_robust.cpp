@@ -327,3 +327,43 @@ TEST_CASE("R75: CSG: a hollow glass sphere absorbs only in its shell", "[csg][ro
         CHECK(c.x == Approx(std::exp(-0.9 * (outer - cavity))).epsilon(1e-6));
     }
 }
+
+TEST_CASE("R74: rays spawned from a half torus never re-hit it at their origin", "[csg][robust]") {
+    // Not convex: a ray may meet the solid again, but never within 10^-7 of its size of where it
+    // left (the true next surface is far farther: the tube's radius is 0.3).
+    int self = 0, rays = 0;
+    for (double scale : {0x1p-10, 1.0, 0x1p10})
+        for (Vec3 shift : {Vec3(0), Vec3(1e5, -1e5, 1e5)}) {
+            auto spec = basic_scene(8, 8);
+            const uint32_t red = add_material(spec, matte({1, 0, 0}));
+            ShapeSpec ring;
+            ring.kind = ShapeKind::Torus;
+            ring.major = 0.8;
+            ring.minor = 0.3;
+            ring.material = red;
+            ShapeSpec solid = csg(CsgOp::Difference, {ring, box({-2, 0.1, -2}, {2, 2, 2}, red)}, red);
+            const Mat4 place = glm::translate(Mat4(1.0), shift) * glm::scale(Mat4(1.0), Vec3(scale)) *
+                               glm::rotate(Mat4(1.0), 0.3, Vec3(1, 0, 1));
+            solid.object_to_world = place;
+            spec.shapes = {solid};
+            auto scene = build(spec);
+            std::mt19937 rng(19);
+            for (int k = 0; k < 4000; ++k) {
+                const Vec3 aim = unit(rng) * 0.9;
+                const Vec3 from = aim + unit(rng) * 6.0;
+                const Ray ray{Vec3(place * glm::dvec4(from, 1)), Vec3(place * glm::dvec4(aim - from, 0))};
+                const auto hit = first_hit(*scene, ray);
+                if (!hit) continue;
+                ++rays;
+                const auto s = scene->geometry().surface(ray, *hit);
+                for (int side : {1, -1}) {
+                    const Vec3 out = glm::normalize(s.ng + 0.9 * unit(rng));
+                    const Vec3 w = (glm::dot(out, s.ng) > 0 ? out : -out) * double(side);
+                    const auto again = first_hit(*scene, Ray{wsd::render::Geometry::offset_origin(s, w), w});
+                    if (again && again->t < 1e-7 * scale) ++self;
+                }
+            }
+        }
+    CHECK(rays > 10000);
+    CHECK(self == 0);
+}
