@@ -39,10 +39,24 @@ const char* kind_name(render::ShapeKind kind) {
     return "object";
 }
 
+// A CSG by its operation, as it is written.
+std::string shape_name(const render::ShapeSpec& s) {
+    if (s.kind != render::ShapeKind::Csg || !s.csg) return kind_name(s.kind);
+    switch (s.csg->op) {
+        case render::CsgOp::Union:
+            return "union";
+        case render::CsgOp::Intersection:
+            return "intersection";
+        case render::CsgOp::Difference:
+            return "difference";
+    }
+    return "csg";
+}
+
 // "sphere at s.wsd:5:1"; an object in a loop is named at its one statement.
 std::string object_name(const lang::LoadedScene& scene, const lang::SourceManager& sources, uint32_t index) {
     const render::SceneSpec& spec = scene.spec;
-    std::string name = index < spec.shapes.size() ? kind_name(spec.shapes[index].kind) : "object";
+    std::string name = index < spec.shapes.size() ? shape_name(spec.shapes[index]) : "object";
     if (index >= scene.shape_spans.size()) return name + " #" + std::to_string(index + 1);
     const lang::Span span = scene.shape_spans[index];
     if (span.file >= sources.size()) return name + " #" + std::to_string(index + 1);

@@ -25,7 +25,7 @@ while (($#)); do
   esac
   shift
 done
-for program in wsd bench_mesh bench_obj bench_parse; do
+for program in wsd bench_mesh bench_obj bench_parse bench_csg; do
   [[ -x $build/$program ]] || { echo "performance: $build/$program not found; build first (./setup.sh)" >&2; exit 3; }
 done
 wsd=$(realpath "$build/wsd")
@@ -211,6 +211,27 @@ mesh_table() {
        "| Cornell box camera / shadow rays, no BVH (every primitive) | $(after cornell.brute primary) / $(after cornell.brute shadow) M/CPU-s |"
 }
 
+# ---------------------------------------------------------------- CSG
+csg_table() {
+  section "CSG: cost per ray beside the sphere's"
+  log "bench_csg"
+  "$build/bench_csg" >"$tmp/csg.txt"
+  para "\`$build/bench_csg\`: closest-hit queries against one solid filling a 512×512 orthographic grid of" \
+       "rays (per CPU-second on one thread), then the grids of bench/scenes/csg_intersection.wsd and" \
+       "csg_difference.wsd (100 solids on a plane, one point light) rendered at 400×400 on one thread" \
+       "beside the same grid of spheres (CPU time per camera or shadow ray). Each figure is the" \
+       "median of 5 passes taken in turn with the others." \
+       "" \
+       "| solid | closest-hit queries | time per query | × the sphere's |" "|---|---:|---:|---:|"
+  awk '/Mrays\/s/ { for (i = 1; i <= NF; i++) if ($i == "Mrays/s") k = i; name = $1;
+         for (i = 2; i <= k - 2; i++) name = name " " $i;
+         printf "| %s | %s M/CPU-s | %s ns | %s |\n", name, $(k - 1), $(k + 1), $(k + 3) }' "$tmp/csg.txt" >>"$page"
+  para "" "| render | time per ray | × the spheres' |" "|---|---:|---:|"
+  awk '/ns\/ray .*spheres/ { for (i = 1; i <= NF; i++) if ($i == "ns/ray") k = i; name = $1;
+         for (i = 2; i <= k - 2; i++) name = name " " $i;
+         printf "| %s | %s ns | %s |\n", name, $(k - 1), $(k + 1) }' "$tmp/csg.txt" >>"$page"
+}
+
 # ---------------------------------------------------------------- parsing and loading
 parse_table() {
   section "Parsing and loading"
@@ -242,6 +263,7 @@ adaptive_table
 bench_table
 threads_table
 mesh_table
+csg_table
 parse_table
 load_after=$(loadavg)
 

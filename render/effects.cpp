@@ -3,6 +3,20 @@
 
 namespace wsd::render {
 
+namespace {
+
+// Each member's own material (nested CSGs' members too) and smooth-normal meshes, on shape i.
+template <class Material, class Use>
+void csg_member_effects(const CsgSpec& csg, size_t i, const Material& material, const Use& use) {
+    for (const ShapeSpec& m : csg.members) {
+        if (m.kind == ShapeKind::Mesh && m.mesh && !m.mesh->normals.empty()) use(Effect::SmoothNormals, i);
+        if (m.material != kInheritMaterial) material(m.material, i);
+        if (m.kind == ShapeKind::Csg && m.csg) csg_member_effects(*m.csg, i, material, use);
+    }
+}
+
+}  // namespace
+
 const char* effect_name(Effect e) {
     switch (e) {
         case Effect::PointShadows:
@@ -31,6 +45,8 @@ const char* effect_name(Effect e) {
             return "adaptive supersampling";
         case Effect::AdaptiveLights:
             return "adaptive area lights";
+        case Effect::Csg:
+            return "CSG";
     }
     return "?";
 }
@@ -59,13 +75,13 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
     }
     auto use = [&set](Effect e, size_t shape) {
         set.add(e);
-        set.shapes[size_t(e)].push_back(uint32_t(shape));
+        auto& list = set.shapes[size_t(e)];
+        if (list.empty() || list.back() != uint32_t(shape)) list.push_back(uint32_t(shape));
     };
-    for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        const ShapeSpec& sh = spec.shapes[i];
-        if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty()) use(Effect::SmoothNormals, i);
-        if (sh.material >= spec.materials.size()) continue;
-        const MaterialSpec& m = spec.materials[sh.material];
+    // The effects of material `mat` on shape i (a CSG's members report through their solid).
+    auto material = [&](uint32_t mat, size_t i) {
+        if (mat >= spec.materials.size()) return;
+        const MaterialSpec& m = spec.materials[mat];
         if (m.reflection > 0) use(Effect::Reflection, i);
         if (m.transmission > 0) {
             use(Effect::Refraction, i);
@@ -77,6 +93,15 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
                 i);
         }
         if (m.bump && m.bump_strength > 0) use(Effect::Bumps, i);
+    };
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& sh = spec.shapes[i];
+        if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty()) use(Effect::SmoothNormals, i);
+        if (sh.kind == ShapeKind::Csg && sh.csg) {
+            use(Effect::Csg, i);
+            csg_member_effects(*sh.csg, i, material, use);
+        }
+        material(sh.material, i);
     }
     return set;
 }

@@ -25,8 +25,9 @@ enum class Effect : uint8_t {
     Supersampling,          // settings.supersamples > 1
     AdaptiveSupersampling,  // adaptive_supersampling with supersamples > 1
     AdaptiveLights,         // an area light with adaptive sampling
+    Csg,                    // a CSG solid (union, intersection, difference)
 };
-inline constexpr size_t kEffectCount = 13;
+inline constexpr size_t kEffectCount = 14;
 
 const char* effect_name(Effect e);
 

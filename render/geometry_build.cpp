@@ -54,7 +54,7 @@ struct Builder {
     void triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
-    void other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
+    void other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool& trans);
     bool world_vertex(const Transform& x, const Vec3& p, Vec3f& out);
     bool degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const;
 };
@@ -283,9 +283,9 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
 
 // Cylinders, cones, tori, discs, CSG solids and instances: built by their own modules
 // (render/other_prims.h), one PrimKind::Other entry each.
-void Builder::other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {
+void Builder::other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool& trans) {
     const std::function<void(std::string)> report = [this](std::string m) { error(std::move(m)); };
-    const OtherBuild ob{g, spec, report, next_prim, info.xform};
+    const OtherBuild ob{g, spec, report, next_prim, info.xform, &trans};
     std::optional<Bounds3f> b;
     uint32_t index = 0;
     switch (kind) {

@@ -41,12 +41,15 @@ void instance_surface(const Geometry::Impl& g, const InstancePrim& q, const Shap
 // Building (Geometry::build): validates shape `s` (every problem through `error`), appends its
 // record to the kind's store with canonical id `prim` and returns its world bounds, or nullopt
 // after an error. `x` is s.object_to_world made a Transform, stored as Impl::xforms[xform].
+// `transmissive` (when set) starts as whether s.material is transmissive; a shape with surfaces
+// of other materials (a CSG's members) sets it when any of them is, so that shadow rays walk it.
 struct OtherBuild {
     Geometry::Impl& g;
     const SceneSpec& spec;
     const std::function<void(std::string)>& error;
     uint32_t prim;
     uint32_t xform;
+    bool* transmissive = nullptr;
 };
 std::optional<Bounds3f> build_quadric(const OtherBuild& b, const ShapeSpec& s, const Transform& x);
 std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const Transform& x);

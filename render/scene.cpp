@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "render/aabb.h"
+#include "render/csg_prims.h"
 #include "render/math.h"
 #include "render/params.h"
 
@@ -129,7 +130,9 @@ bool Scene::may_cross_transmissive(const Vec3& a, const Vec3& b) const {
 void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
     constexpr size_t kMaxBoxes = 16;  // beyond this, one union box (the test is linear)
     for (const ShapeSpec& sh : spec.shapes) {
-        if (!(spec.materials[sh.material].transmission > 0)) continue;
+        const bool trans = sh.kind == ShapeKind::Csg && sh.csg ? csg_transmissive(spec, *sh.csg, sh.material)
+                                                               : spec.materials[sh.material].transmission > 0;
+        if (!trans) continue;
         Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
         const Mat4& m = sh.object_to_world;
         switch (sh.kind) {
@@ -152,12 +155,19 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
                 if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
                 break;
             }
+            case ShapeKind::Csg: {
+                Vec3 clo, chi;
+                if (sh.csg && csg_local_bounds(spec, *sh.csg, clo, chi))
+                    add_box_corners(m, clo, chi, lo, hi);
+                else
+                    transmissive_unbounded_ = true;
+                break;
+            }
             case ShapeKind::Plane:
             case ShapeKind::Cylinder:
             case ShapeKind::Cone:
             case ShapeKind::Torus:
             case ShapeKind::Disc:
-            case ShapeKind::Csg:
             case ShapeKind::Instance:
                 transmissive_unbounded_ = true;
                 break;
