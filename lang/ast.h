@@ -190,7 +190,7 @@ struct Block {
 
 // ---- statements ---------------------------------------------------------------------------------
 
-enum class StmtKind : uint8_t { Let, For, If, Include, Object, Bad };
+enum class StmtKind : uint8_t { Let, For, If, Include, Object, Fn, Return, Call, Bad };
 enum class BlockKind : uint8_t { Settings, Camera, Light, Sphere, Box, Triangle, Plane, Mesh, Cylinder, Cone, Torus, Disc };
 
 // The common head of every statement node; `keyword` is its first token.
@@ -233,6 +233,33 @@ struct ObjectStmt : Stmt {
     std::string_view name;  // lights: the kind word (`point`, `area`)
     Span name_span;
     Block block;
+};
+
+// One parameter of a `fn`; `fallback` is its default value (null: the argument is required).
+struct Param {
+    std::string_view name;
+    Span name_span;
+    Expr* fallback;
+};
+// `fn name(params) { body }`. Parameters with a default come after those without one.
+struct FnStmt : Stmt {
+    std::string_view name;  // empty after a syntax error
+    Span name_span;
+    std::span<const Param> params;
+    StmtList body;
+    size_t required() const {  // the number of parameters without a default
+        size_t n = 0;
+        while (n < params.size() && !params[n].fallback) ++n;
+        return n;
+    }
+};
+// `return value`; the parser allows it only inside a `fn` body.
+struct ReturnStmt : Stmt {
+    Expr* value;  // never null
+};
+// `name(args)` alone on a statement.
+struct CallStmt : Stmt {
+    CallExpr* call;  // never null
 };
 
 struct Program {

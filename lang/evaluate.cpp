@@ -219,7 +219,8 @@ std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a
                                            type_name(b.type()) + " using " + sym);
             return std::nullopt;
         }
-        if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture)) {
+        if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture) ||
+            a.is(ValueType::Function)) {
             diags_.error(step.op_span,
                          std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
             return std::nullopt;
@@ -314,6 +315,10 @@ std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
     const std::string_view name = expr.name;
     if (const Binding* b = find(name)) {
         if (!b->value) return std::nullopt;
+        if (b->value->is(ValueType::Function)) {
+            const FunctionPtr fn = b->value->function();  // the binding may move while the body runs
+            return call_function(fn, expr, true);
+        }
         Diagnostic& d = diags_.error(
             expr.name_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
         d.notes.push_back({b->span, quoted(name) + " is defined here"});
@@ -329,15 +334,18 @@ std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
             }
         }
         Diagnostic& d = diags_.error(expr.name_span, "unknown function " + quoted(name));
-        std::vector<std::string> names;
-        for (const Builtin& g : builtin_functions()) names.emplace_back(g.name);
-        std::string match = closest_match(name, names);
+        std::string match = closest_match(name, callable_names());
         if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
         return std::nullopt;
     }
-    if (expr.args.size() != static_cast<size_t>(f->arity)) {
-        diags_.error(expr.span, quoted(name) + " takes " + std::to_string(f->arity) +
-                                    (f->arity == 1 ? " argument" : " arguments") + ", found " +
+    const size_t max_arity = static_cast<size_t>(f->arity + f->optional);
+    if (expr.args.size() < static_cast<size_t>(f->arity) || expr.args.size() > max_arity) {
+        const std::string takes = f->optional == 0 ? std::to_string(f->arity)
+                                  : f->optional == 1
+                                      ? std::to_string(f->arity) + " or " + std::to_string(max_arity)
+                                      : std::to_string(f->arity) + " to " + std::to_string(max_arity);
+        diags_.error(expr.span, quoted(name) + " takes " + takes +
+                                    (max_arity == 1 ? " argument" : " arguments") + ", found " +
                                     std::to_string(expr.args.size()));
         return std::nullopt;
     }

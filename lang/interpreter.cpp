@@ -1,8 +1,8 @@
-// The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
-// lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
-// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene. Expressions are
-// in evaluate.cpp.
+// The interpreter's statements: let (one binding per name per scope), for (ranges and lists,
+// against a global iteration budget), if (untaken branches are never evaluated), include (relative
+// paths, once per scope and the scopes it encloses, cycles and depth), and block statements:
+// evaluated (evaluate_block.cpp), then lowered and added to the scene. Scopes are in
+// environment.cpp, functions and calls in functions.cpp, expressions in evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include <fstream>
 
 #include "lang/builtins.h"
+#include "lang/large_stack.h"
 #include "lang/parser.h"
 #include "render/file_util.h"
 #include "render/text_util.h"
@@ -47,80 +48,7 @@ Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
 
 Interpreter::Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilder& scene, Limits limits)
     : sources_(sources), diags_(diags), scene_(scene), limits_(limits) {
-    push_scope();  // the file's top scope; builtins live outside it
-}
-
-Interpreter::~Interpreter() = default;
-
-// ---- scopes ------------------------------------------------------------------------------------
-
-const Interpreter::Binding* Interpreter::Scope::find(std::string_view name) const {
-    if (!index.empty()) {
-        auto it = index.find(name);
-        return it == index.end() ? nullptr : &bindings[it->second];
-    }
-    for (const Binding& b : bindings)
-        if (b.name == name) return &b;
-    return nullptr;
-}
-
-void Interpreter::Scope::clear() {
-    bindings.clear();
-    included.clear();
-    if (!index.empty()) index.clear();  // clear() on an empty map still wipes its buckets
-}
-
-const Interpreter::Included* Interpreter::visible_include(const std::string& key) const {
-    for (size_t i = scope_count_; i-- > 0;)
-        for (const Included& inc : scopes_[i].included)
-            if (inc.key == key) return &inc;
-    return nullptr;
-}
-
-void Interpreter::push_scope() {
-    if (scope_count_ == scopes_.size()) scopes_.emplace_back();
-    scopes_[scope_count_++].clear();
-}
-
-void Interpreter::pop_scope() {
-    if (scope_count_ > 1) scopes_[--scope_count_].clear();
-}
-
-void Interpreter::bind(std::string_view name, Span span, std::optional<Value> value) {
-    Scope& scope = scopes_[scope_count_ - 1];
-    if (const Binding* first = scope.find(name)) {
-        Diagnostic& d = diags_.error(span, quoted(name) + " is already defined in this scope");
-        d.notes.push_back({first->span, "first defined here"});
-        return;
-    }
-    constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
-    scope.bindings.push_back(Binding{name, span, std::move(value)});
-    if (!scope.index.empty()) {
-        scope.index.emplace(name, scope.bindings.size() - 1);
-    } else if (scope.bindings.size() >= kIndexFrom) {
-        for (size_t i = 0; i < scope.bindings.size(); ++i) scope.index.emplace(scope.bindings[i].name, i);
-    }
-}
-
-const Interpreter::Binding* Interpreter::find(std::string_view name) const {
-    for (size_t i = scope_count_; i-- > 0;)
-        if (const Binding* b = scopes_[i].find(name)) return b;
-    return nullptr;
-}
-
-std::vector<std::string> Interpreter::visible_names() const {
-    std::vector<std::string> names;
-    for (size_t i = 0; i < scope_count_; ++i)
-        for (const Binding& b : scopes_[i].bindings) names.emplace_back(b.name);
-    for (const BuiltinConstant& c : builtin_constants()) names.emplace_back(c.name);
-    for (const Builtin& f : builtin_functions()) names.emplace_back(f.name);
-    return names;
-}
-
-std::optional<Value> Interpreter::lookup(std::string_view name) const {
-    const Binding* b = scopes_[0].find(name);
-    if (!b) return std::nullopt;
-    return b->value;
+    top_ = scope_ = std::make_shared<Scope>();  // the file's top scope; builtins live outside it
 }
 
 BlockContext Interpreter::context(bool default_material) {
@@ -136,19 +64,21 @@ void Interpreter::run(const Program& program) {
     std::string key = canonical_path(sources_.file(program.file).path);
     include_stack_.push_back(key);
     include_stack_files_.push_back(program.file);
-    scopes_[scope_count_ - 1].included.push_back({key, Span{program.file, 0, 0}});
-    exec_all(program.statements);
+    scope_->included.push_back({key, Span{program.file, 0, 0}});
+    run_on_large_stack([&] { exec_all(program.statements); });
     include_stack_.pop_back();
     include_stack_files_.pop_back();
 }
 
 std::optional<Value> Interpreter::evaluate(const Expr& expr) {
-    return eval(expr);
+    std::optional<Value> result;
+    run_on_large_stack([&] { result = eval(expr); });
+    return result;
 }
 
 void Interpreter::exec_all(StmtList body) {
     for (const Stmt* s : body) {
-        if (stopped()) return;
+        if (stopped() || returning_) return;
         exec(*s);
     }
 }
@@ -171,6 +101,15 @@ void Interpreter::exec(const Stmt& stmt) {
             break;
         case StmtKind::Object:
             exec_object(stmt.as<ObjectStmt>());
+            break;
+        case StmtKind::Fn:
+            exec_fn(stmt.as<FnStmt>());
+            break;
+        case StmtKind::Return:
+            exec_return(stmt.as<ReturnStmt>());
+            break;
+        case StmtKind::Call:
+            exec_call(stmt.as<CallStmt>());
             break;
         case StmtKind::Bad:
             break;  // the parser reported it
@@ -202,7 +141,7 @@ bool Interpreter::run_loop_body(const ForStmt& stmt, const Value& item) {
     bind(stmt.name, stmt.name_span, item);
     exec_all(stmt.body);
     pop_scope();
-    return !stopped() && diags_.error_count() == errors_before;
+    return !stopped() && !returning_ && diags_.error_count() == errors_before;
 }
 
 void Interpreter::exec_for(const ForStmt& stmt) {
@@ -305,7 +244,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         abort();
         return;
     }
-    scopes_[scope_count_ - 1].included.push_back({key, at});
+    scope_->included.push_back({key, at});
     const size_t objects_before = scene_.primitives();
     const uint32_t file = sources_.add(path, std::move(text));
     diags_.push_include(at);
@@ -330,6 +269,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
 }
 
 void Interpreter::exec_object(const ObjectStmt& stmt) {
+    if (!objects_allowed(stmt.keyword)) return;
     const BlockTable* table = statement_table(stmt, diags_);
     if (!table) return;
     std::optional<Span>* first = nullptr;  // a settings or camera block

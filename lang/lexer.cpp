@@ -185,6 +185,8 @@ bool is_statement_keyword(TokenKind kind) {
         case TokenKind::Cone:
         case TokenKind::Torus:
         case TokenKind::Disc:
+        case TokenKind::Fn:
+        case TokenKind::Return:
             return true;
         default:
             return false;

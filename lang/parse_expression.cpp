@@ -170,6 +170,10 @@ Expr* Parser::parse_postfix() {
             break;
         }
     }
+    // Nothing else may follow an operand with '(': a call's callee is a name.
+    const bool callable_shape = e->kind == ExprKind::Index || e->kind == ExprKind::Member ||
+                                e->kind == ExprKind::Call || text_[e->span.begin] == '(';
+    if (!panic_ && check(TokenKind::LParen) && e->kind != ExprKind::Bad && callable_shape) not_a_callee(*e);
     for (; levels > 0; --levels) leave();
     return e;
 }

@@ -86,6 +86,11 @@ private:
     Stmt* parse_if();
     Stmt* parse_include();
     Stmt* parse_object();
+    Stmt* parse_fn();
+    void parse_params(FnStmt& fn);
+    Stmt* parse_return();
+    Stmt* parse_call_statement();
+    void not_a_callee(const Expr& callee);
     StmtList parse_body(const char* what);
     bool parse_name(std::string_view& name, Span& span, const char* after);
 
@@ -144,6 +149,9 @@ private:
     bool panic_ = false;      // an error was reported; stay quiet until resynchronized
     bool bailed_ = false;     // nesting limit or too many errors: the parse winds down
     bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
+    // True only while parsing a `fn` body (a group or CSG body inside one sets it false again):
+    // `return` anywhere else is an error, also in code that never runs.
+    bool return_allowed_ = false;
     int depth_ = 0;
 };
 

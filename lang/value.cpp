@@ -26,6 +26,8 @@ const char* type_name(ValueType type) {
             return "material";
         case ValueType::Texture:
             return "texture";
+        case ValueType::Function:
+            return "function";
     }
     return "value";
 }

@@ -1,7 +1,7 @@
-// Runtime values of the .wsd language: number, bool, string, vector2, vector3, list, material and
-// texture (a material is its evaluated block: lang/evaluated.h). Every value keeps the span it came from.
-// Lists are immutable and shared; a list of numeric vector literals shares the parser's packed storage
-// instead of one Value per element.
+// Runtime values of the .wsd language: number, bool, string, vector2, vector3, list, material,
+// texture (a material is its evaluated block: lang/evaluated.h) and function (lang/environment.h). Every
+// value keeps the span it came from. Lists are immutable and shared; a list of numeric vector literals shares
+// the parser's packed storage instead of one Value per element.
 #pragma once
 
 #include <cstdint>
@@ -29,12 +29,14 @@ using IncludeChain = std::shared_ptr<const IncludeSite>;
 struct ListValue;
 struct MaterialValue;
 struct TextureValue;
+struct FunctionValue;
 using ListPtr = std::shared_ptr<const ListValue>;
 using MaterialPtr = std::shared_ptr<const MaterialValue>;
 using TexturePtr = std::shared_ptr<const TextureValue>;
+using FunctionPtr = std::shared_ptr<const FunctionValue>;
 
 // The order matches the variant's alternatives in Value.
-enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture };
+enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture, Function };
 
 const char* type_name(ValueType type);  // "number", "vector3", ...
 
@@ -49,6 +51,7 @@ public:
     static Value make_list(ListPtr l, Span span) { return Value(std::move(l), span); }
     static Value make_material(MaterialPtr m, Span span) { return Value(std::move(m), span); }
     static Value make_texture(TexturePtr t, Span span) { return Value(std::move(t), span); }
+    static Value make_function(FunctionPtr f, Span span) { return Value(std::move(f), span); }
 
     ValueType type() const { return static_cast<ValueType>(payload_.index()); }
     bool is(ValueType t) const { return type() == t; }
@@ -65,10 +68,11 @@ public:
     const ListPtr& list_ptr() const { return std::get<ListPtr>(payload_); }
     const MaterialPtr& material() const { return std::get<MaterialPtr>(payload_); }
     const TexturePtr& texture() const { return std::get<TexturePtr>(payload_); }
+    const FunctionPtr& function() const { return std::get<FunctionPtr>(payload_); }
 
 private:
-    using Payload =
-        std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr, MaterialPtr, TexturePtr>;
+    using Payload = std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr, MaterialPtr,
+                                 TexturePtr, FunctionPtr>;
     template <class T>
     Value(T&& x, Span span) : payload_(std::forward<T>(x)), span_(span) {}
     Payload payload_{0.0};
