@@ -42,25 +42,29 @@ const Interpreter::Included* Interpreter::visible_include(const std::string& key
     return nullptr;
 }
 
+// Moves, not copies, of the shared pointers: a loop's iteration costs no reference counting.
+ScopePtr Interpreter::new_scope() {
+    if (spare_.empty()) return std::make_shared<Scope>();
+    ScopePtr scope = std::move(spare_.back());
+    spare_.pop_back();
+    return scope;
+}
+
 void Interpreter::push_scope() {
-    push_scope(scope_);
+    ScopePtr scope = new_scope();
+    scope->parent = std::move(scope_);
+    scope_ = std::move(scope);
 }
 
 void Interpreter::push_scope(ScopePtr parent) {
-    ScopePtr scope;
-    if (spare_.empty()) {
-        scope = std::make_shared<Scope>();
-    } else {
-        scope = std::move(spare_.back());
-        spare_.pop_back();
-    }
+    ScopePtr scope = new_scope();
     scope->parent = std::move(parent);
     scope_ = std::move(scope);
 }
 
 void Interpreter::pop_scope() {
     if (scope_ == top_ || !scope_->parent) return;
-    ScopePtr popped = std::exchange(scope_, scope_->parent);
+    ScopePtr popped = std::move(scope_);
     // Functions bound here and held by nothing else keep the scope alive only for themselves.
     long self_held = 0;
     if (popped.use_count() > 1)
@@ -69,10 +73,12 @@ void Interpreter::pop_scope() {
                 b.value->function().use_count() == 1)
                 ++self_held;
     if (popped.use_count() == 1 + self_held) {
+        scope_ = std::move(popped->parent);
         popped->clear();
         spare_.push_back(std::move(popped));
         return;
     }
+    scope_ = popped->parent;
     escaped_.push_back(popped);
     if (escaped_.size() >= prune_escaped_at_) {
         std::erase_if(escaped_, [](const std::weak_ptr<Scope>& w) { return w.expired(); });

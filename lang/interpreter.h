@@ -121,6 +121,7 @@ private:
     // scopes
     void push_scope();
     void push_scope(ScopePtr parent);  // a scope inside `parent` (a function's body)
+    ScopePtr new_scope();
     void pop_scope();
     void bind(std::string_view name, Span span, std::optional<Value> value);
     const Binding* find(std::string_view name) const;
