@@ -169,8 +169,12 @@ void Interpreter::exec_for(const ForStmt& stmt) {
         if (!take_iterations(count, range)) return;
         // An integer counter: `first + k` stays exact where `i += 1` could stall above 2^53.
         const auto n = static_cast<uint64_t>(count);
-        for (uint64_t k = 0; k < n; ++k)
-            if (!run_loop_body(stmt, Value::make_number(first + static_cast<double>(k), range))) break;
+        for (uint64_t k = 0; k < n; ++k) {
+            if (!run_loop_body(stmt, Value::make_number(first + static_cast<double>(k), range))) {
+                if (returning_) iterations_ -= n - k - 1;  // a `return` leaves the loop: refund
+                break;
+            }
+        }
         return;
     }
     std::optional<Value> list = eval(*stmt.value);
@@ -182,8 +186,12 @@ void Interpreter::exec_for(const ForStmt& stmt) {
     }
     const ListPtr items = list->list_ptr();  // keeps the list alive while the body runs
     if (!take_iterations(static_cast<double>(items->size()), stmt.value->span)) return;
-    for (size_t i = 0; i < items->size(); ++i)
-        if (!run_loop_body(stmt, items->at(i, sources_))) break;
+    for (size_t i = 0; i < items->size(); ++i) {
+        if (!run_loop_body(stmt, items->at(i, sources_))) {
+            if (returning_) iterations_ -= items->size() - i - 1;
+            break;
+        }
+    }
 }
 
 void Interpreter::exec_if(const IfStmt& stmt) {

@@ -248,6 +248,19 @@ TEST_CASE("calls and loop iterations share the step budget", "[functions][limits
     CHECK(e->errors()[0].rfind("2:28: the call to 'f' exceeds the limit of 100 steps", 0) == 0);
 }
 
+TEST_CASE("a loop left by return takes only the steps it ran", "[functions][limits]") {
+    Limits limits;
+    limits.loop_iterations = 1000;
+    auto e = evaluate_text(
+        "fn find(xs) { for x in xs { if x > 1 { return x } }\n return 0 }\n"
+        "fn first() { for i in 0 .. 600 { if i == 2 { return i } }\n return 0 }\n"
+        "let a = first() + first() + find([1, 2, 3, 4, 5, 6, 7, 8, 9]) + find([5, 1, 1, 1, 1, 1, 1])\n",
+        limits);
+    REQUIRE(e->errors().empty());
+    CHECK(number(*e, "a") == 11);
+    CHECK(e->interpreter->iterations() == 4 + 3 + 3 + 2 + 1);  // 4 calls, 3 + 3 + 2 + 1 iterations
+}
+
 TEST_CASE("an include in a function body runs once per call", "[functions][include]") {
     TempDir dir;
     dir.write("ball.wsdi", "sphere { center <0, 0, 0> radius 1 material { color <1, 1, 1> } }\n");
