@@ -185,7 +185,7 @@ TEST_CASE("an object statement during a call from an expression is an error with
     CHECK(d.notes[0].message == "the call to 'outer', in an expression");
 }
 
-TEST_CASE("calls nest at most 256 deep; the error names the chain", "[functions][limits]") {
+TEST_CASE("R66: calls nest at most 256 deep; the error names the chain", "[functions][limits]") {
     SECTION("256 nested calls are allowed") {
         auto e = evaluate_text(
             "fn down(n) { if n == 0 { return 0 } return down(n - 1) + 1 }\nlet x = down(255)\n");
@@ -218,7 +218,7 @@ TEST_CASE("calls nest at most 256 deep; the error names the chain", "[functions]
     }
 }
 
-TEST_CASE("256 nested calls, each nesting expressions deeply, do not overflow the stack",
+TEST_CASE("R66: 256 nested calls, each nesting expressions deeply, do not overflow the stack",
           "[functions][limits]") {
     // 240 unary minuses around each recursive call: about 62,000 levels of evaluation in all.
     std::string minuses;
@@ -229,7 +229,7 @@ TEST_CASE("256 nested calls, each nesting expressions deeply, do not overflow th
     CHECK(number(*e, "x") == 255);
 }
 
-TEST_CASE("a runaway recursion ends at the step budget", "[functions][limits]") {
+TEST_CASE("R66: a runaway recursion ends at the step budget", "[functions][limits]") {
     Limits limits;
     limits.loop_iterations = 10000;
     auto e = evaluate_text("fn f(n) { if n > 0 { f(n - 1)\n f(n - 1) } }\nf(40)\nlet after = 1\n", limits);
