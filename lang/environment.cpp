@@ -20,6 +20,16 @@ const Binding* Scope::find(std::string_view name) const {
     return nullptr;
 }
 
+void Scope::add(Binding binding) {
+    constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
+    bindings.push_back(std::move(binding));
+    if (!index.empty()) {
+        index.emplace(bindings.back().name, bindings.size() - 1);
+    } else if (bindings.size() >= kIndexFrom) {
+        for (size_t i = 0; i < bindings.size(); ++i) index.emplace(bindings[i].name, i);
+    }
+}
+
 void Scope::clear() {
     bindings.clear();
     included.clear();
@@ -93,13 +103,7 @@ void Interpreter::bind(std::string_view name, Span span, std::optional<Value> va
         d.notes.push_back({first->span, "first defined here"});
         return;
     }
-    constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
-    scope.bindings.push_back(Binding{name, span, std::move(value)});
-    if (!scope.index.empty()) {
-        scope.index.emplace(name, scope.bindings.size() - 1);
-    } else if (scope.bindings.size() >= kIndexFrom) {
-        for (size_t i = 0; i < scope.bindings.size(); ++i) scope.index.emplace(scope.bindings[i].name, i);
-    }
+    scope.add(Binding{name, span, std::move(value)});
 }
 
 const Interpreter::Binding* Interpreter::find(std::string_view name) const {

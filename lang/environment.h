@@ -36,6 +36,7 @@ struct Scope {
     std::shared_ptr<Scope> parent;  // the lexically enclosing scope; null for the file's top scope
 
     const Binding* find(std::string_view name) const;
+    void add(Binding binding);  // a name not bound here yet
     void clear();
 };
 using ScopePtr = std::shared_ptr<Scope>;

@@ -113,16 +113,14 @@ bool Interpreter::take_call_step(const CallExpr& call) {
     return false;
 }
 
-// In the call's new scope: the arguments given, then the defaults of the others (each sees the
-// parameters before it).
-void Interpreter::bind_arguments(const FnStmt& decl, std::vector<Value>& args) {
-    for (size_t i = 0; i < decl.params.size(); ++i) {
-        const Param& p = decl.params[i];
-        if (i < args.size())
-            bind(p.name, p.name_span, std::move(args[i]));
-        else
-            bind(p.name, p.name_span, eval(*p.fallback));
+// The arguments, evaluated in the caller's scope into the call's scope `frame` (not yet entered).
+bool Interpreter::bind_arguments(const FnStmt& decl, const CallExpr& call, Scope& frame) {
+    for (size_t i = 0; i < call.args.size(); ++i) {
+        std::optional<Value> v = eval(*call.args[i]);
+        if (!v) return false;
+        frame.add(Binding{decl.params[i].name, decl.params[i].name_span, std::move(v)});
     }
+    return true;
 }
 
 std::optional<Value> Interpreter::call_function(const FunctionPtr& fn, const CallExpr& call,
@@ -134,26 +132,28 @@ std::optional<Value> Interpreter::call_function(const FunctionPtr& fn, const Cal
         return std::nullopt;
     }
     if (!take_call_step(call)) return std::nullopt;
-    std::vector<Value> args;
-    args.reserve(call.args.size());
-    for (const Expr* e : call.args) {
-        std::optional<Value> v = eval(*e);
-        if (!v) return std::nullopt;
-        args.push_back(std::move(*v));
+    ScopePtr frame = new_scope();
+    if (!bind_arguments(decl, call, *frame)) {
+        frame->clear();
+        spare_.push_back(std::move(frame));
+        return std::nullopt;
     }
     const size_t errors_before = diags_.error_count();
 
     // Into the function: its scope, its file's include chain, a fresh nesting count.
-    ScopePtr caller_scope = scope_;
+    ScopePtr caller_scope = std::move(scope_);
     IncludeChain caller_chain = std::exchange(chain_, fn->chain);
     std::vector<Span> caller_includes = diags_.exchange_include_stack(fn->include_sites);
     const int caller_depth = std::exchange(depth_, 0);
     const CallExpr* caller_expression_call = expression_call_;
     if (in_expression) expression_call_ = &call;
     calls_.push_back(&call);
-    push_scope(fn->scope);
+    frame->parent = fn->scope;
+    scope_ = std::move(frame);
 
-    bind_arguments(decl, args);
+    // The defaults of the parameters not given, in the call's scope: each sees those before it.
+    for (size_t i = call.args.size(); i < decl.params.size(); ++i)
+        bind(decl.params[i].name, decl.params[i].name_span, eval(*decl.params[i].fallback));
     exec_all(decl.body);
     const bool returned = std::exchange(returning_, false);
     std::optional<Value> result = std::move(return_value_);

@@ -102,7 +102,7 @@ private:
     bool check_arity(const FunctionValue& fn, const CallExpr& call);
     void call_depth_error(const CallExpr& call);
     bool take_call_step(const CallExpr& call);
-    void bind_arguments(const FnStmt& decl, std::vector<Value>& args);
+    bool bind_arguments(const FnStmt& decl, const CallExpr& call, Scope& frame);
     void drop_call_value(const Value& value, const CallExpr& call);
     // Whether a statement that adds to the scene may run here: not during a call made from an
     // expression (reported at `at`, with a note at that call).
