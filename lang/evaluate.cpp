@@ -212,25 +212,25 @@ std::optional<Value> Interpreter::eval_binary(const BinaryExpr& expr) {
 
 std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a, const Value& b) {
     const BinaryOp op = step.op;
-    const std::string sym = quoted(binary_op_text(op));
+    const auto sym = [op] { return quoted(binary_op_text(op)); };  // for messages only
     if (op == BinaryOp::Eq || op == BinaryOp::Ne) {
         if (a.type() != b.type()) {
             diags_.error(step.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
-                                           type_name(b.type()) + " using " + sym);
+                                           type_name(b.type()) + " using " + sym());
             return std::nullopt;
         }
         if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture) ||
             a.is(ValueType::Function)) {
             diags_.error(step.op_span,
-                         std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
+                         std::string("cannot compare ") + type_name(a.type()) + "s using " + sym());
             return std::nullopt;
         }
         bool equal = values_equal(a, b);
         return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, step.span);
     }
     if (!a.is(ValueType::Number) || !b.is(ValueType::Number)) {
-        diags_.error(step.op_span,
-                     sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
+        diags_.error(step.op_span, sym() + " compares numbers, found " + type_name(a.type()) + " and " +
+                                       type_name(b.type()));
         return std::nullopt;
     }
     const double x = a.number(), y = b.number();
@@ -240,17 +240,17 @@ std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a
 
 std::optional<Value> Interpreter::arithmetic(const BinaryStep& step, const Value& a, const Value& b) {
     const BinaryOp op = step.op;
-    const std::string sym = quoted(binary_op_text(op));
+    const auto sym = [op] { return quoted(binary_op_text(op)); };  // for messages only
     auto fail = [&](const std::string& message) -> std::optional<Value> {
         diags_.error(step.op_span, message);
         return std::nullopt;
     };
     auto mismatch = [&]() {
-        return fail("operator " + sym + " cannot combine " + type_name(a.type()) + " and " +
+        return fail("operator " + sym() + " cannot combine " + type_name(a.type()) + " and " +
                     type_name(b.type()));
     };
     auto result = [&](ValueType type, glm::dvec3 v) -> std::optional<Value> {
-        if (!finite3(v)) return fail("result of " + sym + " is not a finite number");
+        if (!finite3(v)) return fail("result of " + sym() + " is not a finite number");
         if (type == ValueType::Number) return Value::make_number(v.x, step.span);
         return make_vector(type, v, step.span);
     };
