@@ -45,13 +45,25 @@ void Interpreter::exec_call(const CallStmt& stmt) {
         if (std::optional<Value> result = call_function(fn, call, false)) drop_call_value(*result, call);
         return;
     }
-    eval_call(call);  // a builtin (its value is dropped) or an error
+    // A builtin, or a name that is not a function (reported there).
+    if (eval_call(call)) {
+        Diagnostic& d =
+            diags_.warning(call.span, quoted(call.name) + " returns a value that this statement drops");
+        d.help.push_back("bind it with 'let NAME = " + std::string(call.name) + "(...)'");
+    }
 }
 
-// No value type holds objects in this version of the language, so no dropped value loses any.
+namespace {
+
+// Whether dropping a value loses objects that it holds (no value of the current types does).
+bool holds_objects(const Value&) {
+    return false;
+}
+
+}  // namespace
+
 void Interpreter::drop_call_value(const Value& value, const CallExpr& call) {
-    const bool holds_objects = false;
-    if (!holds_objects) return;
+    if (!holds_objects(value)) return;
     Diagnostic& d = diags_.warning(call.span, "the " + std::string(type_name(value.type())) + " that " +
                                                   quoted(call.name) + " returns is dropped");
     d.help.push_back("write `object " + std::string(call.name) + "() {}` to add it");
