@@ -1,8 +1,8 @@
 // The interpreter: walks the AST with lexical scopes, runs let/for/if/include/fn and calls,
-// evaluates expressions into values and blocks into evaluated blocks (checked against their tables as they
-// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Errors go to
-// Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
-// many errors".
+// evaluates expressions into values and blocks into evaluated blocks (checked against their tables
+// as they are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder.
+// Errors go to Diagnostics; evaluation continues past independent errors and stops at limits,
+// failed includes and "too many errors".
 #pragma once
 
 #include <memory>
@@ -147,15 +147,15 @@ private:
     std::vector<std::weak_ptr<Scope>> escaped_;  // popped scopes still held (by functions)
     size_t prune_escaped_at_ = 64;
     int depth_ = 0;
+    uint64_t iterations_ = 0;
+    bool aborted_ = false;
+    std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
 
     // calls
     std::vector<const CallExpr*> calls_;         // the user-function calls running, outermost first
     const CallExpr* expression_call_ = nullptr;  // the innermost running call made from an expression
     bool returning_ = false;                     // a `return` ran: the body stops
     std::optional<Value> return_value_;
-    uint64_t iterations_ = 0;
-    bool aborted_ = false;
-    std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
 
     // includes
     IncludeChain chain_;
