@@ -71,7 +71,8 @@ void Interpreter::drop_call_value(const Value& value, const CallExpr& call) {
 
 bool Interpreter::objects_allowed(Span at) {
     if (!expression_call_) return true;
-    const std::string_view text = sources_.file(at.file).text.substr(at.begin, at.end - at.begin);
+    const std::string_view text =
+        std::string_view(sources_.file(at.file).text).substr(at.begin, at.end - at.begin);
     Diagnostic& d = diags_.error(at, quoted(text) + " cannot run during a call made from an expression");
     d.notes.push_back(
         {expression_call_->span, "the call to " + quoted(expression_call_->name) + ", in an expression"});
