@@ -197,7 +197,7 @@ struct Block {
 
 // ---- statements ---------------------------------------------------------------------------------
 
-enum class StmtKind : uint8_t { Let, For, If, Include, Object, Group, Instance, Item, Bad };
+enum class StmtKind : uint8_t { Let, For, If, Include, Object, Group, Instance, Item, Fn, Return, Call, Bad };
 enum class BlockKind : uint8_t {
     Settings,
     Camera,
@@ -287,6 +287,32 @@ inline const char* group_keyword(GroupKind kind) {
     }
     return "group";
 }
+// One parameter of a `fn`; `fallback` is its default value (null: the argument is required).
+struct Param {
+    std::string_view name;
+    Span name_span;
+    Expr* fallback;
+};
+// `fn name(params) { body }`. Parameters with a default come after those without one.
+struct FnStmt : Stmt {
+    std::string_view name;  // empty after a syntax error
+    Span name_span;
+    std::span<const Param> params;
+    StmtList body;
+    size_t required() const {  // the number of parameters without a default
+        size_t n = 0;
+        while (n < params.size() && !params[n].fallback) ++n;
+        return n;
+    }
+};
+// `return value`; the parser allows it only inside a `fn` body.
+struct ReturnStmt : Stmt {
+    Expr* value;  // never null
+};
+// `name(args)` alone on a statement.
+struct CallStmt : Stmt {
+    CallExpr* call;  // never null
+};
 
 struct Program {
     uint32_t file = 0;

@@ -216,6 +216,26 @@ void Printer::statement(const Stmt& s) {
         case StmtKind::Item:
             item(s.as<ItemStmt>().item);
             break;
+        case StmtKind::Fn: {
+            const auto& fn = s.as<FnStmt>();
+            open(join("fn", fn.name), s.span);
+            for (const Param& p : fn.params) {
+                open("param " + std::string(p.name), p.name_span);
+                if (p.fallback) expr(*p.fallback);
+                close();
+            }
+            for (const Stmt* b : fn.body) statement(*b);
+            close();
+            break;
+        }
+        case StmtKind::Return:
+            open("return", s.span);
+            expr(*s.as<ReturnStmt>().value);
+            close();
+            break;
+        case StmtKind::Call:
+            expr(*s.as<CallStmt>().call);
+            break;
         case StmtKind::Bad:
             leaf("bad", s.span);
             break;

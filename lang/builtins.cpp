@@ -3,7 +3,9 @@
 // already checked the argument count.
 #include "lang/builtins.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include "lang/params.h"
@@ -267,6 +269,35 @@ std::optional<Value> fn_srgb(const CallContext& c) {
     return colour(c, 1.0);
 }
 
+// splitmix64's finaliser (with its increment): every input bit affects every output bit.
+uint64_t mix64(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// The IEEE-754 bits of x, with -0 as 0 (and every NaN as one NaN, though values are never NaN).
+uint64_t hash_bits(double x) {
+    if (x == 0) return 0;
+    if (std::isnan(x)) return 0x7ff8000000000000ULL;
+    return std::bit_cast<uint64_t>(x);
+}
+
+// A hash of the arguments' bits, the same on every machine: each argument mixes in its number of
+// components (1, 2 or 3), then each component; the top 53 bits become a number in [0, 1).
+std::optional<Value> fn_random(const CallContext& c) {
+    uint64_t h = 0;
+    for (size_t i = 0; i < c.args.size(); ++i) {
+        if (!want_numeric(c, i)) return std::nullopt;
+        const Numeric n = numeric(c.args[i]);
+        const int count = n.dims == 0 ? 1 : n.dims;
+        h = mix64(h ^ static_cast<uint64_t>(count));
+        for (int k = 0; k < count; ++k) h = mix64(h ^ hash_bits(n.v[k]));
+    }
+    return Value::make_number(static_cast<double>(h >> 11) * 0x1.0p-53, c.call.span);
+}
+
 }  // namespace
 
 const std::vector<Builtin>& builtin_functions() {
@@ -300,6 +331,7 @@ const std::vector<Builtin>& builtin_functions() {
         {"rgb", 3, fn_rgb},
         {"srgb", 3, fn_srgb},
         {"param", 2, builtin_param},
+        {"random", 1, fn_random, 2},
     };
     return table;
 }

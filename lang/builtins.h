@@ -28,6 +28,7 @@ struct Builtin {
     std::string_view name;
     int arity;
     BuiltinFn fn;
+    int optional = 0;  // arguments that may follow the `arity` required ones
 };
 
 const std::vector<Builtin>& builtin_functions();

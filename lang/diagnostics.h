@@ -44,6 +44,13 @@ public:
     // Include chain: notes appended to every diagnostic reported while a file is being included.
     void push_include(Span include_site);
     void pop_include();
+    // The include sites in effect (outermost first), and a swap of them: a function's body runs
+    // with the includes that led to its definition, wherever it is called from.
+    const std::vector<Span>& include_stack() const { return include_stack_; }
+    std::vector<Span> exchange_include_stack(std::vector<Span> sites) {
+        std::swap(sites, include_stack_);
+        return sites;
+    }
 
 private:
     std::vector<Diagnostic> diags_;

@@ -214,25 +214,25 @@ std::optional<Value> Interpreter::eval_binary(const BinaryExpr& expr) {
 
 std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a, const Value& b) {
     const BinaryOp op = step.op;
-    const std::string sym = quoted(binary_op_text(op));
+    const auto sym = [op] { return quoted(binary_op_text(op)); };  // for messages only
     if (op == BinaryOp::Eq || op == BinaryOp::Ne) {
         if (a.type() != b.type()) {
             diags_.error(step.op_span, std::string("cannot compare ") + type_name(a.type()) + " with " +
-                                           type_name(b.type()) + " using " + sym);
+                                           type_name(b.type()) + " using " + sym());
             return std::nullopt;
         }
         if (a.is(ValueType::List) || a.is(ValueType::Material) || a.is(ValueType::Texture) ||
-            a.is(ValueType::Object)) {
+            a.is(ValueType::Object) || a.is(ValueType::Function)) {
             diags_.error(step.op_span,
-                         std::string("cannot compare ") + type_name(a.type()) + "s using " + sym);
+                         std::string("cannot compare ") + type_name(a.type()) + "s using " + sym());
             return std::nullopt;
         }
         bool equal = values_equal(a, b);
         return Value::make_bool(op == BinaryOp::Eq ? equal : !equal, step.span);
     }
     if (!a.is(ValueType::Number) || !b.is(ValueType::Number)) {
-        diags_.error(step.op_span,
-                     sym + " compares numbers, found " + type_name(a.type()) + " and " + type_name(b.type()));
+        diags_.error(step.op_span, sym() + " compares numbers, found " + type_name(a.type()) + " and " +
+                                       type_name(b.type()));
         return std::nullopt;
     }
     const double x = a.number(), y = b.number();
@@ -242,17 +242,17 @@ std::optional<Value> Interpreter::compare(const BinaryStep& step, const Value& a
 
 std::optional<Value> Interpreter::arithmetic(const BinaryStep& step, const Value& a, const Value& b) {
     const BinaryOp op = step.op;
-    const std::string sym = quoted(binary_op_text(op));
+    const auto sym = [op] { return quoted(binary_op_text(op)); };  // for messages only
     auto fail = [&](const std::string& message) -> std::optional<Value> {
         diags_.error(step.op_span, message);
         return std::nullopt;
     };
     auto mismatch = [&]() {
-        return fail("operator " + sym + " cannot combine " + type_name(a.type()) + " and " +
+        return fail("operator " + sym() + " cannot combine " + type_name(a.type()) + " and " +
                     type_name(b.type()));
     };
     auto result = [&](ValueType type, glm::dvec3 v) -> std::optional<Value> {
-        if (!finite3(v)) return fail("result of " + sym + " is not a finite number");
+        if (!finite3(v)) return fail("result of " + sym() + " is not a finite number");
         if (type == ValueType::Number) return Value::make_number(v.x, step.span);
         return make_vector(type, v, step.span);
     };
@@ -317,6 +317,10 @@ std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
     const std::string_view name = expr.name;
     if (const Binding* b = find(name)) {
         if (!b->value) return std::nullopt;
+        if (b->value->is(ValueType::Function)) {
+            const FunctionPtr fn = b->value->function();  // the binding may move while the body runs
+            return call_function(fn, expr, true);
+        }
         Diagnostic& d = diags_.error(
             expr.name_span, quoted(name) + " is a " + type_name(b->value->type()) + ", not a function");
         d.notes.push_back({b->span, quoted(name) + " is defined here"});
@@ -332,15 +336,18 @@ std::optional<Value> Interpreter::eval_call(const CallExpr& expr) {
             }
         }
         Diagnostic& d = diags_.error(expr.name_span, "unknown function " + quoted(name));
-        std::vector<std::string> names;
-        for (const Builtin& g : builtin_functions()) names.emplace_back(g.name);
-        std::string match = closest_match(name, names);
+        std::string match = closest_match(name, callable_names());
         if (!match.empty()) d.help.push_back("did you mean '" + match + "'?");
         return std::nullopt;
     }
-    if (expr.args.size() != static_cast<size_t>(f->arity)) {
-        diags_.error(expr.span, quoted(name) + " takes " + std::to_string(f->arity) +
-                                    (f->arity == 1 ? " argument" : " arguments") + ", found " +
+    const size_t max_arity = static_cast<size_t>(f->arity + f->optional);
+    if (expr.args.size() < static_cast<size_t>(f->arity) || expr.args.size() > max_arity) {
+        const std::string takes = f->optional == 0 ? std::to_string(f->arity)
+                                  : f->optional == 1
+                                      ? std::to_string(f->arity) + " or " + std::to_string(max_arity)
+                                      : std::to_string(f->arity) + " to " + std::to_string(max_arity);
+        diags_.error(expr.span, quoted(name) + " takes " + takes +
+                                    (max_arity == 1 ? " argument" : " arguments") + ", found " +
                                     std::to_string(expr.args.size()));
         return std::nullopt;
     }

@@ -137,6 +137,9 @@ ObjectPtr Interpreter::group_value(const GroupStmt& stmt) {
     const GroupStmt* saved_body = body_;
     members_ = &members;
     body_ = &stmt;
+    // The body's objects build this value, also inside a call made from an expression
+    // (`return group { leg() }`); a call from an expression within the body is checked afresh.
+    const CallExpr* saved_expression_call = std::exchange(expression_call_, nullptr);
     const size_t errors_before = diags_.error_count();
     push_scope();
     for (const Stmt* s : stmt.body) {
@@ -150,6 +153,7 @@ ObjectPtr Interpreter::group_value(const GroupStmt& stmt) {
     pop_scope();
     members_ = saved_members;
     body_ = saved_body;
+    expression_call_ = saved_expression_call;
     // A body with errors has no value: its members are incomplete, and what uses it would only
     // report the same errors again.
     if (stopped() || !items.ok() || diags_.error_count() != errors_before) return nullptr;

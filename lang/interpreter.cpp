@@ -1,9 +1,9 @@
-// The interpreter's statements and scopes: let (one binding per name per scope), for (ranges and
-// lists, against a global iteration budget), if (untaken branches are never evaluated), include
-// (relative paths, once per scope and the scopes it encloses, cycles and depth), and block
-// statements: evaluated (evaluate_block.cpp), then lowered and added to the scene, or made object
-// values and added to the body being evaluated (evaluate_group.cpp). Expressions are in
-// evaluate.cpp.
+// The interpreter's statements: let (one binding per name per scope), for (ranges and lists,
+// against a global iteration budget), if (untaken branches are never evaluated), include (relative
+// paths, once per scope and the scopes it encloses, cycles and depth), and block statements:
+// evaluated (evaluate_block.cpp), then lowered and added to the scene, or made object values and
+// added to the body being evaluated (evaluate_group.cpp). Scopes are in environment.cpp,
+// functions and calls in functions.cpp, expressions in evaluate.cpp.
 #include "lang/interpreter.h"
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include <fstream>
 
 #include "lang/builtins.h"
+#include "lang/large_stack.h"
 #include "lang/parser.h"
 #include "render/file_util.h"
 #include "render/text_util.h"
@@ -59,80 +60,7 @@ Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
 
 Interpreter::Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilder& scene, Limits limits)
     : sources_(sources), diags_(diags), scene_(scene), limits_(limits) {
-    push_scope();  // the file's top scope; builtins live outside it
-}
-
-Interpreter::~Interpreter() = default;
-
-// ---- scopes ------------------------------------------------------------------------------------
-
-const Interpreter::Binding* Interpreter::Scope::find(std::string_view name) const {
-    if (!index.empty()) {
-        auto it = index.find(name);
-        return it == index.end() ? nullptr : &bindings[it->second];
-    }
-    for (const Binding& b : bindings)
-        if (b.name == name) return &b;
-    return nullptr;
-}
-
-void Interpreter::Scope::clear() {
-    bindings.clear();
-    included.clear();
-    if (!index.empty()) index.clear();  // clear() on an empty map still wipes its buckets
-}
-
-const Interpreter::Included* Interpreter::visible_include(const std::string& key) const {
-    for (size_t i = scope_count_; i-- > 0;)
-        for (const Included& inc : scopes_[i].included)
-            if (inc.key == key) return &inc;
-    return nullptr;
-}
-
-void Interpreter::push_scope() {
-    if (scope_count_ == scopes_.size()) scopes_.emplace_back();
-    scopes_[scope_count_++].clear();
-}
-
-void Interpreter::pop_scope() {
-    if (scope_count_ > 1) scopes_[--scope_count_].clear();
-}
-
-void Interpreter::bind(std::string_view name, Span span, std::optional<Value> value) {
-    Scope& scope = scopes_[scope_count_ - 1];
-    if (const Binding* first = scope.find(name)) {
-        Diagnostic& d = diags_.error(span, quoted(name) + " is already defined in this scope");
-        d.notes.push_back({first->span, "first defined here"});
-        return;
-    }
-    constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
-    scope.bindings.push_back(Binding{name, span, std::move(value)});
-    if (!scope.index.empty()) {
-        scope.index.emplace(name, scope.bindings.size() - 1);
-    } else if (scope.bindings.size() >= kIndexFrom) {
-        for (size_t i = 0; i < scope.bindings.size(); ++i) scope.index.emplace(scope.bindings[i].name, i);
-    }
-}
-
-const Interpreter::Binding* Interpreter::find(std::string_view name) const {
-    for (size_t i = scope_count_; i-- > 0;)
-        if (const Binding* b = scopes_[i].find(name)) return b;
-    return nullptr;
-}
-
-std::vector<std::string> Interpreter::visible_names() const {
-    std::vector<std::string> names;
-    for (size_t i = 0; i < scope_count_; ++i)
-        for (const Binding& b : scopes_[i].bindings) names.emplace_back(b.name);
-    for (const BuiltinConstant& c : builtin_constants()) names.emplace_back(c.name);
-    for (const Builtin& f : builtin_functions()) names.emplace_back(f.name);
-    return names;
-}
-
-std::optional<Value> Interpreter::lookup(std::string_view name) const {
-    const Binding* b = scopes_[0].find(name);
-    if (!b) return std::nullopt;
-    return b->value;
+    top_ = scope_ = std::make_shared<Scope>();  // the file's top scope; builtins live outside it
 }
 
 BlockContext Interpreter::context(bool default_material) {
@@ -148,19 +76,21 @@ void Interpreter::run(const Program& program) {
     std::string key = canonical_path(sources_.file(program.file).path);
     include_stack_.push_back(key);
     include_stack_files_.push_back(program.file);
-    scopes_[scope_count_ - 1].included.push_back({key, Span{program.file, 0, 0}});
-    exec_all(program.statements);
+    scope_->included.push_back({key, Span{program.file, 0, 0}});
+    run_on_large_stack([&] { exec_all(program.statements); });
     include_stack_.pop_back();
     include_stack_files_.pop_back();
 }
 
 std::optional<Value> Interpreter::evaluate(const Expr& expr) {
-    return eval(expr);
+    std::optional<Value> result;
+    run_on_large_stack([&] { result = eval(expr); });
+    return result;
 }
 
 void Interpreter::exec_all(StmtList body) {
     for (const Stmt* s : body) {
-        if (stopped()) return;
+        if (stopped() || returning_) return;
         exec(*s);
     }
 }
@@ -188,6 +118,15 @@ void Interpreter::exec(const Stmt& stmt) {
             break;
         case StmtKind::Item:
             break;  // read by the group or CSG body that holds it
+        case StmtKind::Fn:
+            exec_fn(stmt.as<FnStmt>());
+            break;
+        case StmtKind::Return:
+            exec_return(stmt.as<ReturnStmt>());
+            break;
+        case StmtKind::Call:
+            exec_call(stmt.as<CallStmt>());
+            break;
         case StmtKind::Bad:
             break;  // the parser reported it
     }
@@ -218,7 +157,7 @@ bool Interpreter::run_loop_body(const ForStmt& stmt, const Value& item) {
     bind(stmt.name, stmt.name_span, item);
     exec_all(stmt.body);
     pop_scope();
-    return !stopped() && diags_.error_count() == errors_before;
+    return !stopped() && !returning_ && diags_.error_count() == errors_before;
 }
 
 void Interpreter::exec_for(const ForStmt& stmt) {
@@ -246,8 +185,12 @@ void Interpreter::exec_for(const ForStmt& stmt) {
         if (!take_iterations(count, range)) return;
         // An integer counter: `first + k` stays exact where `i += 1` could stall above 2^53.
         const auto n = static_cast<uint64_t>(count);
-        for (uint64_t k = 0; k < n; ++k)
-            if (!run_loop_body(stmt, Value::make_number(first + static_cast<double>(k), range))) break;
+        for (uint64_t k = 0; k < n; ++k) {
+            if (!run_loop_body(stmt, Value::make_number(first + static_cast<double>(k), range))) {
+                if (returning_) iterations_ -= n - k - 1;  // a `return` leaves the loop: refund
+                break;
+            }
+        }
         return;
     }
     std::optional<Value> list = eval(*stmt.value);
@@ -259,8 +202,12 @@ void Interpreter::exec_for(const ForStmt& stmt) {
     }
     const ListPtr items = list->list_ptr();  // keeps the list alive while the body runs
     if (!take_iterations(static_cast<double>(items->size()), stmt.value->span)) return;
-    for (size_t i = 0; i < items->size(); ++i)
-        if (!run_loop_body(stmt, items->at(i, sources_))) break;
+    for (size_t i = 0; i < items->size(); ++i) {
+        if (!run_loop_body(stmt, items->at(i, sources_))) {
+            if (returning_) iterations_ -= items->size() - i - 1;
+            break;
+        }
+    }
 }
 
 void Interpreter::exec_if(const IfStmt& stmt) {
@@ -321,7 +268,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         abort();
         return;
     }
-    scopes_[scope_count_ - 1].included.push_back({key, at});
+    scope_->included.push_back({key, at});
     // Objects go to the scene (shapes or instances) or to the body being evaluated.
     auto objects_added = [this] {
         return scene_.primitives() + scene_.instances() + (members_ ? members_->size() : 0);
@@ -350,6 +297,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
 }
 
 void Interpreter::exec_object(const Stmt& added) {
+    if (!objects_allowed(added.keyword)) return;
     if (members_ && is_scene_element(added)) {
         const std::string body = group_keyword(body_->group_kind);
         Diagnostic& d = diags_.error(

@@ -1,10 +1,9 @@
-// The interpreter: walks the AST with lexical scopes, runs let/for/if/include, evaluates
-// expressions into values and blocks into evaluated blocks (checked against their tables as they
-// are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder. Object
-// statements deliver where objects go: the scene, or the group or CSG body being evaluated (whose
-// value they build: lang/object_value.h). Errors go to
-// Diagnostics; evaluation continues past independent errors and stops at limits, failed includes and "too
-// many errors".
+// The interpreter: walks the AST with lexical scopes, runs let/for/if/include/fn and calls,
+// evaluates expressions into values and blocks into evaluated blocks (checked against their tables
+// as they are evaluated), then hands each to lowering, collecting the scene in a SceneBuilder.
+// Object statements deliver where objects go: the scene, or the group or CSG body being evaluated
+// (whose value they build: lang/object_value.h). Errors go to Diagnostics; evaluation continues
+// past independent errors and stops at limits, failed includes and "too many errors".
 #pragma once
 
 #include <memory>
@@ -16,6 +15,7 @@
 
 #include "lang/ast.h"
 #include "lang/diagnostics.h"
+#include "lang/environment.h"
 #include "lang/lower.h"
 #include "lang/value.h"
 #include "render/limits.h"
@@ -25,14 +25,16 @@ namespace wsd::lang {
 class ParamTable;
 
 struct Limits {
-    uint64_t loop_iterations = 100'000'000;      // in total
+    uint64_t loop_iterations = 100'000'000;      // in total, with one step per function call
     size_t primitives = render::kMaxPrimitives;  // stored: distinct geometry
     size_t instances = render::kMaxInstances;
     int include_depth = 64;
     // The parser limits nesting to 256 levels a file (a chain of one operator level is one
     // node); this guards the evaluator's own recursion over the whole scene, where includes
-    // nested in bodies add up (statements and expressions counted together).
+    // nested in bodies add up (statements and expressions counted together). A function call
+    // starts a new count: the evaluator runs on a stack sized for call_depth such counts.
     int eval_depth = 600;
+    int call_depth = 256;  // nested calls of user functions
 };
 
 class Interpreter {
@@ -54,23 +56,9 @@ public:
     uint64_t iterations() const { return iterations_; }
 
 private:
-    struct Binding {
-        std::string_view name;
-        Span span;
-        std::optional<Value> value;  // empty: its definition failed (already reported)
-    };
-    // A file included in this scope: a second include of it here or in an enclosed scope is skipped.
-    struct Included {
-        std::string key;  // canonical path
-        Span site;        // the include that ran it
-    };
-    struct Scope {
-        std::vector<Binding> bindings;
-        std::unordered_map<std::string_view, size_t> index;  // built once a scope grows large
-        std::vector<Included> included;
-        const Binding* find(std::string_view name) const;
-        void clear();
-    };
+    using Binding = lang::Binding;
+    using Included = lang::Included;
+    using Scope = lang::Scope;
     // Counts statement and expression recursion together; past the limit evaluation stops with
     // one error instead of overflowing the stack.
     class DepthGuard {
@@ -95,6 +83,9 @@ private:
     void exec_include(const IncludeStmt& stmt);
     // Every statement that adds an object (a block, a group or CSG, an `object`) comes here.
     void exec_object(const Stmt& stmt);
+    void exec_fn(const FnStmt& stmt);
+    void exec_return(const ReturnStmt& stmt);
+    void exec_call(const CallStmt& stmt);
     bool run_loop_body(const ForStmt& stmt, const Value& item);
     bool take_iterations(double count, Span at);
 
@@ -107,6 +98,18 @@ private:
     std::optional<Value> eval_binary(const BinaryExpr& expr);
     std::optional<Value> eval_logical(const BinaryExpr& expr);
     std::optional<Value> eval_call(const CallExpr& expr);
+    std::vector<std::string> callable_names() const;  // for "did you mean"
+
+    // user functions (functions.cpp)
+    std::optional<Value> call_function(const FunctionPtr& fn, const CallExpr& call, bool in_expression);
+    bool check_arity(const FunctionValue& fn, const CallExpr& call);
+    void call_depth_error(const CallExpr& call);
+    bool take_call_step(const CallExpr& call);
+    bool bind_arguments(const FnStmt& decl, const CallExpr& call, Scope& frame);
+    void drop_call_value(const Value& value, const CallExpr& call);
+    // Whether a statement that adds to the scene may run here: not during a call made from an
+    // expression (reported at `at`, with a note at that call).
+    bool objects_allowed(Span at);
     std::optional<Value> eval_member(const MemberExpr& expr);
     std::optional<Value> eval_index(const IndexExpr& expr);
     // One step of a binary chain: its operator, where its errors point, and its result's span.
@@ -120,6 +123,8 @@ private:
 
     // scopes
     void push_scope();
+    void push_scope(ScopePtr parent);  // a scope inside `parent` (a function's body)
+    ScopePtr new_scope();
     void pop_scope();
     void bind(std::string_view name, Span span, std::optional<Value> value);
     const Binding* find(std::string_view name) const;
@@ -155,8 +160,11 @@ private:
     SceneBuilder& scene_;
     Limits limits_;
     const ParamTable* params_ = nullptr;
-    std::vector<Scope> scopes_;  // scopes_[0..depth_) are live; the rest are reused storage
-    size_t scope_count_ = 0;
+    ScopePtr scope_;                             // the innermost scope of the code that runs
+    ScopePtr top_;                               // the main file's top scope
+    std::vector<ScopePtr> spare_;                // popped scopes nothing else held, reused by push_scope
+    std::vector<std::weak_ptr<Scope>> escaped_;  // popped scopes still held (by functions)
+    size_t prune_escaped_at_ = 64;
     int depth_ = 0;
     uint64_t iterations_ = 0;
     bool aborted_ = false;
@@ -165,6 +173,12 @@ private:
     // (body_ names its kind), or the scene (null).
     std::vector<ObjectPtr>* members_ = nullptr;
     const GroupStmt* body_ = nullptr;
+
+    // calls
+    std::vector<const CallExpr*> calls_;         // the user-function calls running, outermost first
+    const CallExpr* expression_call_ = nullptr;  // the innermost running call made from an expression
+    bool returning_ = false;                     // a `return` ran: the body stops
+    std::optional<Value> return_value_;
 
     // includes
     IncludeChain chain_;

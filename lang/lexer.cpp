@@ -190,6 +190,8 @@ bool is_statement_keyword(TokenKind kind) {
         case TokenKind::Intersection:
         case TokenKind::Difference:
         case TokenKind::Object:
+        case TokenKind::Fn:
+        case TokenKind::Return:
             return true;
         default:
             return false;

@@ -170,6 +170,13 @@ Expr* Parser::parse_postfix() {
             break;
         }
     }
+    // Nothing else may follow an operand with '(': a call's callee is a name.
+    if (!panic_ && check(TokenKind::LParen) && e->kind != ExprKind::Bad) {
+        const bool parenthesized = e->span.begin < text_.size() && text_[e->span.begin] == '(';
+        if (e->kind == ExprKind::Index || e->kind == ExprKind::Member || e->kind == ExprKind::Call ||
+            parenthesized)
+            not_a_callee(*e);
+    }
     for (; levels > 0; --levels) leave();
     return e;
 }

@@ -15,9 +15,9 @@ namespace detail {
 namespace {
 
 const std::vector<std::string> statement_words = {
-    "let",    "for",  "if",       "include", "settings",     "camera",     "light",
-    "sphere", "box",  "triangle", "plane",   "mesh",         "cylinder",   "cone",
-    "torus",  "disc", "group",    "union",   "intersection", "difference", "object"};
+    "let",    "for",  "if",       "include", "settings",     "camera",     "light",  "sphere",
+    "box",    "triangle", "plane", "mesh",   "cylinder",     "cone",       "torus",  "disc",
+    "group",  "union", "intersection", "difference", "object", "fn",      "return"};
 
 }  // namespace
 
@@ -117,11 +117,16 @@ StmtList Parser::parse_statements(bool top_level) {
     return keep(statements);
 }
 
-// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt | group_stmt | instance_stmt ;
+// statement = let_stmt | for_stmt | if_stmt | include_stmt | object_stmt | group_stmt | instance_stmt
+//           | fn_stmt | return_stmt | call_stmt ;
 Stmt* Parser::parse_statement() {
     switch (tok_.kind) {
         case TokenKind::Let:
             return parse_let();
+        case TokenKind::Fn:
+            return parse_fn();
+        case TokenKind::Return:
+            return parse_return();
         case TokenKind::For:
             return parse_for();
         case TokenKind::If:
@@ -164,6 +169,9 @@ Stmt* Parser::parse_statement() {
             while (p < text_.size() &&
                    (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\r' || text_[p] == '\n'))
                 ++p;
+            // A call, or something called that is not a name (`fs[0](2)`, reported there).
+            if (p < text_.size() && (text_[p] == '(' || text_[p] == '[' || text_[p] == '.'))
+                return parse_call_statement();
             const bool assign =
                 p < text_.size() && text_[p] == '=' && (p + 1 == text_.size() || text_[p + 1] != '=');
             const std::string match = closest_match(word, statement_words);

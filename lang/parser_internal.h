@@ -114,6 +114,11 @@ private:
     StmtList parse_group_body(GroupStmt& group);
     bool starts_group_item();
     Expr* parse_object_value();  // an object block as an expression
+    Stmt* parse_fn();
+    void parse_params(FnStmt& fn);
+    Stmt* parse_return();
+    Stmt* parse_call_statement();
+    void not_a_callee(const Expr& callee);
     StmtList parse_body(const char* what);
     bool parse_name(std::string_view& name, Span& span, const char* after);
 
@@ -172,6 +177,9 @@ private:
     bool panic_ = false;      // an error was reported; stay quiet until resynchronized
     bool bailed_ = false;     // nesting limit or too many errors: the parse winds down
     bool in_vector_ = false;  // directly inside a vector literal: '>' closes it
+    // True only while parsing a `fn` body (a group or CSG body inside one sets it false again):
+    // `return` anywhere else is an error, also in code that never runs.
+    bool return_allowed_ = false;
     int depth_ = 0;
     int group_bodies_ = 0;  // group and CSG bodies being parsed, around the current token
 };

@@ -28,6 +28,8 @@ const char* type_name(ValueType type) {
             return "texture";
         case ValueType::Object:
             return "object";
+        case ValueType::Function:
+            return "function";
     }
     return "value";
 }

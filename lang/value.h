@@ -1,8 +1,8 @@
 // Runtime values of the .wsd language: number, bool, string, vector2, vector3, list, material,
-// texture and object (a material is its evaluated block: lang/evaluated.h; an object is an
-// evaluated object tree: lang/object_value.h). Every value keeps the span it came from.
-// Lists are immutable and shared; a list of numeric vector literals shares the parser's packed storage
-// instead of one Value per element.
+// texture, object (a material is its evaluated block: lang/evaluated.h; an object is an evaluated
+// object tree: lang/object_value.h) and function (lang/environment.h). Every value keeps the span
+// it came from. Lists are immutable and shared; a list of numeric vector literals shares the
+// parser's packed storage instead of one Value per element.
 #pragma once
 
 #include <cstdint>
@@ -31,13 +31,15 @@ struct ListValue;
 struct MaterialValue;
 struct TextureValue;
 struct ObjectValue;
+struct FunctionValue;
 using ListPtr = std::shared_ptr<const ListValue>;
 using MaterialPtr = std::shared_ptr<const MaterialValue>;
 using TexturePtr = std::shared_ptr<const TextureValue>;
 using ObjectPtr = std::shared_ptr<const ObjectValue>;  // lang/object_value.h
+using FunctionPtr = std::shared_ptr<const FunctionValue>;
 
 // The order matches the variant's alternatives in Value.
-enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture, Object };
+enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture, Object, Function };
 
 const char* type_name(ValueType type);  // "number", "vector3", ...
 
@@ -53,6 +55,7 @@ public:
     static Value make_material(MaterialPtr m, Span span) { return Value(std::move(m), span); }
     static Value make_texture(TexturePtr t, Span span) { return Value(std::move(t), span); }
     static Value make_object(ObjectPtr o, Span span) { return Value(std::move(o), span); }
+    static Value make_function(FunctionPtr f, Span span) { return Value(std::move(f), span); }
 
     ValueType type() const { return static_cast<ValueType>(payload_.index()); }
     bool is(ValueType t) const { return type() == t; }
@@ -70,10 +73,11 @@ public:
     const MaterialPtr& material() const { return std::get<MaterialPtr>(payload_); }
     const TexturePtr& texture() const { return std::get<TexturePtr>(payload_); }
     const ObjectPtr& object() const { return std::get<ObjectPtr>(payload_); }
+    const FunctionPtr& function() const { return std::get<FunctionPtr>(payload_); }
 
 private:
     using Payload = std::variant<double, bool, std::string, glm::dvec2, glm::dvec3, ListPtr, MaterialPtr,
-                                 TexturePtr, ObjectPtr>;
+                                 TexturePtr, ObjectPtr, FunctionPtr>;
     template <class T>
     Value(T&& x, Span span) : payload_(std::forward<T>(x)), span_(span) {}
     Payload payload_{0.0};
