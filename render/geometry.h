@@ -74,10 +74,15 @@ public:
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);
 
-    size_t primitive_count() const;  // triangles + spheres + boxes + planes
-    size_t triangle_count() const;
+    // Primitives stored: every primitive outside instances, and each instanced object's
+    // primitives once (however many instances it has). Instances themselves are not counted.
+    size_t primitive_count() const;
+    size_t triangle_count() const;  // stored, as primitive_count
+    size_t instance_count() const;
+    // Primitives as rendered: each instance counts its object's primitives.
+    size_t instanced_primitive_count() const;
     bool has_transmissive() const;
-    size_t memory_bytes() const;  // primitives and BVH
+    size_t memory_bytes() const;  // primitives and BVHs, each instanced object's once
 
     // The primitives and the BVH (geometry_impl.h), for render's own queries beyond these
     // (shadow shafts: shaft.h).

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "render/aabb.h"
 #include "render/math.h"
@@ -114,41 +115,74 @@ bool Scene::may_cross_transmissive(const Vec3& a, const Vec3& b) const {
     return false;
 }
 
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The box of shape `sh` through m into [lo, hi]; false for a shape without finite bounds here.
+bool shape_box(const ShapeSpec& sh, const Mat4& m, Vec3& lo, Vec3& hi) {
+    switch (sh.kind) {
+        case ShapeKind::Sphere:
+            add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
+            return true;
+        case ShapeKind::Box:
+            add_box_corners(m, sh.box_min, sh.box_max, lo, hi);
+            return true;
+        case ShapeKind::Triangle:
+            for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
+            return true;
+        case ShapeKind::Mesh: {
+            Vec3 mlo(kInf), mhi(-kInf);
+            for (const glm::vec3& v : sh.mesh->vertices) {
+                mlo = glm::min(mlo, Vec3(v));
+                mhi = glm::max(mhi, Vec3(v));
+            }
+            if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
+            return true;
+        }
+        default:
+            return false;
+    }
+}
+
+// An instanced object's transmissive members in its own frame: those with their own
+// transmissive material, and those that inherit (transmissive when the instance is).
+struct PrototypeGlass {
+    Vec3 own_lo{kInf}, own_hi{-kInf}, inherit_lo{kInf}, inherit_hi{-kInf};
+    bool own_unbounded = false, inherit_unbounded = false;
+};
+
+PrototypeGlass prototype_glass(const SceneSpec& spec, const PrototypeSpec& p) {
+    PrototypeGlass g;
+    for (const ShapeSpec& m : p.shapes) {
+        const bool inherit = m.material == kInheritMaterial;
+        if (!inherit && !(spec.materials[m.material].transmission > 0)) continue;
+        if (!shape_box(m, m.object_to_world, inherit ? g.inherit_lo : g.own_lo,
+                       inherit ? g.inherit_hi : g.own_hi))
+            (inherit ? g.inherit_unbounded : g.own_unbounded) = true;
+    }
+    return g;
+}
+
+}  // namespace
+
 void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
     constexpr size_t kMaxBoxes = 16;  // beyond this, one union box (the test is linear)
+    std::vector<std::optional<PrototypeGlass>> glass(spec.prototypes.size());
     for (const ShapeSpec& sh : spec.shapes) {
-        if (!(spec.materials[sh.material].transmission > 0)) continue;
-        Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+        const bool trans = spec.materials[sh.material].transmission > 0;
+        Vec3 lo(kInf), hi(-kInf);
         const Mat4& m = sh.object_to_world;
-        switch (sh.kind) {
-            case ShapeKind::Sphere:
-                add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
-                break;
-            case ShapeKind::Box:
-                add_box_corners(m, sh.box_min, sh.box_max, lo, hi);
-                break;
-            case ShapeKind::Triangle:
-                for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
-                break;
-            case ShapeKind::Mesh: {
-                Vec3 mlo(std::numeric_limits<double>::infinity()),
-                    mhi(-std::numeric_limits<double>::infinity());
-                for (const glm::vec3& v : sh.mesh->vertices) {
-                    mlo = glm::min(mlo, Vec3(v));
-                    mhi = glm::max(mhi, Vec3(v));
-                }
-                if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
-                break;
-            }
-            case ShapeKind::Plane:
-            case ShapeKind::Cylinder:
-            case ShapeKind::Cone:
-            case ShapeKind::Torus:
-            case ShapeKind::Disc:
-            case ShapeKind::Csg:
-            case ShapeKind::Instance:
-                transmissive_unbounded_ = true;
-                break;
+        if (sh.kind == ShapeKind::Instance) {
+            if (sh.prototype >= glass.size()) continue;
+            auto& pg = glass[sh.prototype];
+            if (!pg) pg = prototype_glass(spec, spec.prototypes[sh.prototype]);
+            if (pg->own_unbounded || (trans && pg->inherit_unbounded)) transmissive_unbounded_ = true;
+            if (pg->own_lo.x <= pg->own_hi.x) add_box_corners(m, pg->own_lo, pg->own_hi, lo, hi);
+            if (trans && pg->inherit_lo.x <= pg->inherit_hi.x)
+                add_box_corners(m, pg->inherit_lo, pg->inherit_hi, lo, hi);
+        } else if (trans && !shape_box(sh, m, lo, hi)) {
+            transmissive_unbounded_ = true;
         }
         if (transmissive_unbounded_ || !(lo.x <= hi.x)) continue;
         // Pad by a relative margin far above the rounding of the shapes' own intersection code,
