@@ -59,13 +59,15 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
     }
     auto use = [&set](Effect e, size_t shape) {
         set.add(e);
-        set.shapes[size_t(e)].push_back(uint32_t(shape));
+        auto& users = set.shapes[size_t(e)];
+        if (users.empty() || users.back() != uint32_t(shape)) users.push_back(uint32_t(shape));
     };
-    for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        const ShapeSpec& sh = spec.shapes[i];
+    // A shape's effects; an instance's are its members' (each with its own material, or the
+    // instance's where it inherits), attributed to the instance.
+    auto shape_effects = [&](const ShapeSpec& sh, uint32_t material, size_t i) {
         if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty()) use(Effect::SmoothNormals, i);
-        if (sh.material >= spec.materials.size()) continue;
-        const MaterialSpec& m = spec.materials[sh.material];
+        if (material >= spec.materials.size()) return;
+        const MaterialSpec& m = spec.materials[material];
         if (m.reflection > 0) use(Effect::Reflection, i);
         if (m.transmission > 0) {
             use(Effect::Refraction, i);
@@ -77,6 +79,15 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
                 i);
         }
         if (m.bump && m.bump_strength > 0) use(Effect::Bumps, i);
+    };
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& sh = spec.shapes[i];
+        if (sh.kind != ShapeKind::Instance || sh.prototype >= spec.prototypes.size()) {
+            shape_effects(sh, sh.material, i);
+            continue;
+        }
+        for (const ShapeSpec& member : spec.prototypes[sh.prototype].shapes)
+            shape_effects(member, member.material == kInheritMaterial ? sh.material : member.material, i);
     }
     return set;
 }

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/effects.h"
 #include "render/geometry.h"
 #include "tests/render/scene_builders.h"
 
@@ -365,4 +366,19 @@ TEST_CASE("R68: 10^6 instances build and render") {
     CHECK(r.stats.nonfinite_samples == 0);
     CHECK(lit_pixels(r.film) > 32 * 24 / 4);
     CHECK(pixel(r.film, 16, 23) != Color(0));  // the nearest rows of spheres
+}
+
+TEST_CASE("an instance has its members' effects, attributed to it") {
+    SceneSpec spec = stage(8, 8);
+    PrototypeSpec p;
+    p.shapes.push_back(sphere({0, 0, 0}, 0.5, 2));                 // glass
+    p.shapes.push_back(sphere({1, 0, 0}, 0.5, kInheritMaterial));  // the instance's
+    spec.prototypes.push_back(p);
+    spec.shapes.push_back(instance(0, Mat4(1.0), 5));  // specular
+    const auto set = wsd::render::analyse_effects(spec);
+    using wsd::render::Effect;
+    CHECK(set.has(Effect::Refraction));
+    CHECK(set.has(Effect::Specular));
+    CHECK(set.shapes[size_t(Effect::Refraction)] == std::vector<uint32_t>{1});
+    CHECK(set.shapes[size_t(Effect::Absorption)] == std::vector<uint32_t>{1});
 }
