@@ -170,6 +170,7 @@ bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter 
         filter = RayFilter::All;
     }
     Counters c;
+    c.any_hit = true;
     RayPre r(ray);
     bool hit = false;
     switch (filter) {

@@ -50,32 +50,24 @@ public:
         return pg.shapes.size() == 1 ? 0 : pg.shape_of(prim);
     }
     const Transform& linear(uint32_t shape) {
-        if (shape != shape_) {
-            shape_ = shape;
-            full_ = false;
-            const Mat4 c = m_ * p_.shapes[shape].object_to_world;
-            x_ = Transform{};
-            for (int i = 0; i < 3; ++i) x_.l[i] = Vec3(c[0][i], c[1][i], c[2][i]);
-            x_.t = Vec3(c[3][0], c[3][1], c[3][2]);
-        }
+        if (shape != shape_) compose(shape);
         return x_;
     }
     const Transform& full(uint32_t shape) {
         if (shape != shape_ || !full_) {
-            shape_ = shape;
+            compose(shape);
             full_ = true;
             (void)make_transform(m_ * p_.shapes[shape].object_to_world, x_);  // valid: checked at build
         }
         return x_;
     }
-    // Vertex k of triangle `tri` of member `shape`, in world space as the flat build stores it.
-    Vec3f vertex(uint32_t shape, const TriPrim& tri, int k) {
-        const ShapeInfo& info = p_.geometry->shapes[shape];
-        const ShapeSpec& s = p_.shapes[shape];
-        const uint32_t local = tri.v[k] - info.vertex_offset;
-        const Transform& x = linear(shape);
-        if (s.kind == ShapeKind::Mesh) return world_vertex_of(x, Vec3(s.mesh->vertices[local]));
-        return world_vertex_of(x, p_.tri_src[info.extra][local]);
+    // The vertices of triangle `tri` of member `shape`, in world space as the flat build stores them.
+    [[gnu::always_inline]] void triangle(uint32_t shape, const TriPrim& tri, Vec3f (&v)[3]) {
+        if (shape != shape_) compose(shape);
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t local = tri.v[k] - offset_;
+            v[k] = world_vertex_of(x_, mesh_ != nullptr ? Vec3(mesh_[local]) : (*lone_)[local]);
+        }
     }
 
 private:
@@ -84,6 +76,25 @@ private:
     uint32_t shape_ = 0xffffffffu;
     bool full_ = false;
     Transform x_;
+    // The member's own vertices: a mesh's, or a lone triangle's (in double).
+    const glm::vec3* mesh_ = nullptr;
+    const std::array<Vec3, 3>* lone_ = nullptr;
+    uint32_t offset_ = 0;
+
+    // The composed matrix's linear part and translation, as make_transform extracts them.
+    void compose(uint32_t shape) {
+        shape_ = shape;
+        full_ = false;
+        const Mat4 c = m_ * p_.shapes[shape].object_to_world;
+        x_ = Transform{};
+        for (int i = 0; i < 3; ++i) x_.l[i] = Vec3(c[0][i], c[1][i], c[2][i]);
+        x_.t = Vec3(c[3][0], c[3][1], c[3][2]);
+        const ShapeInfo& info = p_.geometry->shapes[shape];
+        const ShapeSpec& s = p_.shapes[shape];
+        offset_ = info.vertex_offset;
+        mesh_ = s.kind == ShapeKind::Mesh ? s.mesh->vertices.data() : nullptr;
+        lone_ = s.kind == ShapeKind::Triangle ? &p_.tri_src[info.extra] : nullptr;
+    }
 };
 
 // The sphere and box of member `shape` as the flat build would store them under transform x.
@@ -187,9 +198,9 @@ void InstanceRay::test(uint32_t k, Best& best) {
         case PrimKind::Triangle: {
             const TriPrim& tri = pg.tris[slot];
             const uint32_t shape = members.shape_of(tri.prim);
-            const Vec3f v0 = members.vertex(shape, tri, 0), v1 = members.vertex(shape, tri, 1),
-                        v2 = members.vertex(shape, tri, 2);
-            if (detail::test_triangle(r, v0, v1, v2, best.limit, c, t, b1, b2))
+            Vec3f v[3];
+            members.triangle(shape, tri, v);
+            if (detail::test_triangle(r, v[0], v[1], v[2], best.limit, c, t, b1, b2))
                 best.offer(t, tri.prim, e, b1, b2);
             return;
         }
@@ -237,6 +248,24 @@ struct InnerClosest {
     bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
 };
 
+// The any-hit walk: depth first, ended by the first hit.
+struct InnerAny {
+    static constexpr WalkOrder kOrder = WalkOrder::DepthFirst;
+    using Child = BvhChild;
+    InstanceRay& ir;
+    Best& best;
+    float limit;
+
+    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return ir.local.box.hit4(node, limit, tn); }
+    bool leaf(const Child& e) {
+        for (uint32_t k = e.first; k < e.first + e.count; ++k) {
+            ir.test(k, best);
+            if (best.hit) return true;
+        }
+        return false;
+    }
+};
+
 }  // namespace
 
 namespace detail {
@@ -248,9 +277,14 @@ bool test_instance(const Impl& g, const InstancePrim& q, const RayPre& r, double
     InstanceRay ir(p, q, xi, r, c);
     if (!ir.widen(xi, p.bounds, limit)) return false;
     Best best{limit};
-    InnerClosest walk{ir, best, to_float_up(limit)};
     uint64_t visits = 0;
-    walk_bvh(p.geometry->nodes.data(), walk, visits);
+    if (c.any_hit) {
+        InnerAny walk{ir, best, to_float_up(limit)};
+        walk_bvh(p.geometry->nodes.data(), walk, visits);
+    } else {
+        InnerClosest walk{ir, best, to_float_up(limit)};
+        walk_bvh(p.geometry->nodes.data(), walk, visits);
+    }
     c.boxes += 4 * visits;
     if (!best.hit) return false;
     h.t = best.t;
@@ -280,8 +314,9 @@ void instance_surface(const Geometry::Impl& g, const InstancePrim& q, const Shap
     switch (static_cast<PrimKind>((e >> kKindShift) & 3u)) {
         case PrimKind::Triangle: {
             const TriPrim& tri = pg.tris[slot];
-            const Vec3 v[3] = {Vec3(members.vertex(shape, tri, 0)), Vec3(members.vertex(shape, tri, 1)),
-                               Vec3(members.vertex(shape, tri, 2))};
+            Vec3f vf[3];
+            members.triangle(shape, tri, vf);
+            const Vec3 v[3] = {Vec3(vf[0]), Vec3(vf[1]), Vec3(vf[2])};
             const uint32_t local[3] = {tri.v[0] - mi.vertex_offset, tri.v[1] - mi.vertex_offset,
                                        tri.v[2] - mi.vertex_offset};
             const Transform& x = members.full(shape);

@@ -16,6 +16,8 @@ using Impl = Geometry::Impl;
 
 struct Counters {
     uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0, planes = 0;
+    // An any-hit query: primitives made of others (instances) may stop at their first hit.
+    bool any_hit = false;
     void flush(RayStats& s) const {
         s.box_tests += boxes;
         s.triangle_tests += tri_tests;
