@@ -49,15 +49,11 @@ public:
         const Geometry::Impl& pg = *p_.geometry;
         return pg.shapes.size() == 1 ? 0 : pg.shape_of(prim);
     }
-    const Transform& linear(uint32_t shape) {
-        if (shape != shape_) compose(shape);
-        return x_;
-    }
     const Transform& full(uint32_t shape) {
         if (shape != shape_ || !full_) {
             compose(shape);
             full_ = true;
-            (void)make_transform(m_ * p_.shapes[shape].object_to_world, x_);  // valid: checked at build
+            (void)make_transform(m_ * p_.shapes[shape].object_to_world, x_);  // valid: build_instance
         }
         return x_;
     }
@@ -427,6 +423,19 @@ std::optional<Bounds3f> build_instance(const OtherBuild& b, const ShapeSpec& s, 
     if (!is_finite(world.lo) || !is_finite(world.hi)) {
         b.error("instance is out of range after its transform");
         return std::nullopt;
+    }
+    // Every member's composed transform, as the flat scene's would be, must be valid.
+    const Mat4 m = s.object_to_world;
+    const Mat4* last = nullptr;
+    for (size_t k = 0; k < p.shapes.size(); ++k) {
+        const Mat4& own = p.shapes[k].object_to_world;
+        if (own == Mat4(1.0) || (last != nullptr && own == *last)) continue;
+        last = &own;
+        Transform composed;
+        if (auto msg = make_transform(m * own, composed)) {
+            b.error("with its object's shape " + std::to_string(k + 1) + ": " + *msg);
+            return std::nullopt;
+        }
     }
     const double pm = max3(glm::max(abs3(Vec3(p.bounds.lo)), abs3(Vec3(p.bounds.hi))));
     const double wm = max3(glm::max(abs3(lo), abs3(hi)));

@@ -278,6 +278,22 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
         }
         scene->object_to_world_.push_back(spec.shapes[i].object_to_world);
     }
+    // An instanced object's members, checked once, at its first instance (their own tags).
+    std::vector<uint8_t> checked(spec.prototypes.size(), 0);
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& sh = spec.shapes[i];
+        if (sh.kind != ShapeKind::Instance || sh.prototype >= checked.size() || checked[sh.prototype])
+            continue;
+        checked[sh.prototype] = 1;
+        for (const ShapeSpec& m : spec.prototypes[sh.prototype].shapes) {
+            if (m.material != kInheritMaterial && m.material >= spec.materials.size()) {
+                errors.push_back({SpecItem::Shape, i, m.tag, "material index out of range", -1});
+                shapes_ok = false;
+            } else if (!check_shape(m, i, errors)) {
+                shapes_ok = false;
+            }
+        }
+    }
     if (shapes_ok) scene->geometry_ = Geometry::build(spec, errors, use_bvh, threads);
     if (errors.size() != errors_before || !scene->geometry_ || !materials_ok) return nullptr;
 

@@ -168,6 +168,13 @@ TEST_CASE("instances render bit-identical to the same shapes written out flat") 
     }
     spec.shapes.push_back(box({-3, -1, 3}, {-2, 0.5, 3.5}, 5));
     require_identical(spec, flattened(spec));
+    // Without the top-level BVH (every entry tested): the same image again.
+    std::vector<SpecError> errors;
+    const auto brute = wsd::render::build_scene(spec, errors, false, 1);
+    REQUIRE(brute);
+    wsd::render::RenderOptions options;
+    options.threads = 2;
+    CHECK(wsd::render::render(*brute, options).film.rgb == render_spec(flattened(spec)).film.rgb);
 }
 
 TEST_CASE("an instance's members take the instance's material where they inherit it") {
@@ -381,4 +388,25 @@ TEST_CASE("an instance has its members' effects, attributed to it") {
     CHECK(set.has(Effect::Specular));
     CHECK(set.shapes[size_t(Effect::Refraction)] == std::vector<uint32_t>{1});
     CHECK(set.shapes[size_t(Effect::Absorption)] == std::vector<uint32_t>{1});
+}
+
+TEST_CASE("an instance whose transform and a member's together are singular is refused") {
+    SceneSpec spec = stage(8, 8);
+    Mat4 shear(1.0);
+    shear[1] = glm::dvec4(1, 1e-7, 0, 0);  // columns nearly parallel, but not singular alone
+    PrototypeSpec p;
+    ShapeSpec b = box({0, 0, 0}, {1, 1, 1}, 3);
+    b.object_to_world = shear;
+    p.shapes.push_back(sphere({0, 0, 0}, 1, 3));
+    p.shapes.push_back(b);
+    spec.prototypes.push_back(p);
+    spec.shapes.push_back(instance(0, glm::translate(Mat4(1.0), Vec3(5, 0, 0)), 3));
+    std::vector<SpecError> errors;
+    CHECK(Geometry::build(spec, errors));
+    spec.shapes.push_back(instance(0, shear, 3));
+    CHECK_FALSE(Geometry::build(spec, errors));
+    REQUIRE(errors.size() == 1);
+    CHECK(errors[0].index == 2);
+    CHECK(errors[0].message ==
+          "with its object's shape 2: transform is singular (a zero scale or collapsed axes)");
 }
