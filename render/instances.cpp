@@ -307,6 +307,7 @@ void instance_surface(const Geometry::Impl& g, const InstancePrim& q, const Shap
     const ShapeInfo& mi = pg.shapes[shape];
     const ShapeSpec& ms = p.shapes[shape];
     if (ms.material != kInheritMaterial) s.material = ms.material;  // else the instance's, as given
+    s.member = shape;
     switch (static_cast<PrimKind>((e >> kKindShift) & 3u)) {
         case PrimKind::Triangle: {
             const TriPrim& tri = pg.tris[slot];
@@ -460,6 +461,12 @@ std::optional<Bounds3f> build_instance(const OtherBuild& b, const ShapeSpec& s, 
         g.instances.push_back(q);
     }
     return world;
+}
+
+Mat4 Geometry::member_to_world(const SurfaceHit& s) const {
+    const Impl& g = *impl_;
+    const InstancePrim& q = g.instances[g.others[g.shapes[g.shape_of(s.prim)].extra].index];
+    return matrix_of(g.xforms[q.xform]) * g.prototypes[q.prototype]->shapes[s.member].object_to_world;
 }
 
 size_t Prototype::memory_bytes() const {

@@ -89,7 +89,7 @@ SceneSpec flattened(const SceneSpec& spec) {
 }
 
 // Camera, lights (a point light and an area light: shafts), a mirror floor, and materials:
-// 0 matte checker, 1 mirror, 2 glass, 3 red, 4 blue, 5 specular.
+// 0 matte checker, 1 mirror, 2 glass, 3 red, 4 blue, 5 specular, 6 bumped.
 SceneSpec stage(int w = 64, int h = 48) {
     SceneSpec spec = basic_scene(w, h, {0.5, 2.5, -6}, 45);
     spec.camera.look_at = {0, 0.3, 0};
@@ -112,12 +112,18 @@ SceneSpec stage(int w = 64, int h = 48) {
     shiny.specular = 0.6;
     shiny.shininess = 30;
     add_material(spec, shiny);
+    auto bumpy = matte(Color(0.6, 0.8, 0.5));
+    bumpy.bump = wsd::render::TextureSpec{};
+    bumpy.bump->kind = wsd::render::TextureKind::Perlin;
+    bumpy.bump->perlin_scale = Vec3(8);
+    bumpy.bump_strength = 0.8;
+    add_material(spec, bumpy);
     spec.shapes.push_back(plane({0, 1, 0}, -1, 1));
     return spec;
 }
 
 // Every kind the instances test exactly: a mesh with normals and uvs, a lone triangle with uvs,
-// spheres (one stretched: the non-similarity path), a rotated box; some members inherit.
+// spheres (one stretched: the non-similarity path), a rotated, bumped box; some members inherit.
 PrototypeSpec mixed_prototype() {
     PrototypeSpec p;
     p.shapes.push_back(mesh_shape(sheet(12), 0, rot_scale(10, {1, 0, 0}, Vec3(1.2), {0, 0.1, 0})));
@@ -128,7 +134,7 @@ PrototypeSpec mixed_prototype() {
     ShapeSpec egg = sphere({0, 0, 0}, 0.2, kInheritMaterial);
     egg.object_to_world = rot_scale(30, {0, 0, 1}, {1, 1.6, 0.8}, {-0.35, 0.3, -0.25});
     p.shapes.push_back(egg);
-    ShapeSpec b = box({-0.15, -0.1, -0.15}, {0.15, 0.2, 0.15}, 1);
+    ShapeSpec b = box({-0.15, -0.1, -0.15}, {0.15, 0.2, 0.15}, 6);
     b.object_to_world = rot_scale(25, {0, 1, 0}, Vec3(1), {0.35, 0.0, 0.35});
     p.shapes.push_back(b);
     return p;
