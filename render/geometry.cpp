@@ -248,6 +248,14 @@ size_t Geometry::instanced_primitive_count() const {
             n += g.prototypes[g.instances[i].prototype]->geometry->primitive_count;
     return n;
 }
+size_t Geometry::instanced_triangle_count() const {
+    const Impl& g = *impl_;
+    size_t n = g.tris.size();
+    for (size_t i = 0; i < g.instances.size(); ++i)
+        if (i == 0 || g.instances[i].prim != g.instances[i - 1].prim)
+            n += g.prototypes[g.instances[i].prototype]->triangles;
+    return n;
+}
 bool Geometry::has_transmissive() const {
     return impl_->has_transmissive;
 }

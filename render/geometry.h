@@ -86,8 +86,9 @@ public:
     size_t primitive_count() const;
     size_t triangle_count() const;  // stored, as primitive_count
     size_t instance_count() const;
-    // Primitives as rendered: each instance counts its object's primitives.
+    // Primitives and triangles as rendered: each instance counts its object's.
     size_t instanced_primitive_count() const;
+    size_t instanced_triangle_count() const;
     bool has_transmissive() const;
     size_t memory_bytes() const;  // primitives and BVHs, each instanced object's once
 

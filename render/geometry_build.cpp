@@ -26,6 +26,8 @@ struct Builder {
     std::vector<uint32_t> entries;  // encoded entries, same order
     std::vector<uint8_t> inherits;  // prototypes: 1 where the primitive inherits its material
     uint32_t next_prim = 0;
+    size_t stored = 0, instances = 0;  // for the limits: primitives stored, instances
+    std::vector<uint8_t> counted;      // per prototype: its primitives are in `stored`
     size_t shape_index = 0;
     int shape_errors = 0;
 
@@ -388,8 +390,22 @@ void Builder::shape(size_t i, bool& limit_reported) {
             break;
     }
     if (shape_errors > 0) return;
-    if (next_prim > kMaxPrimitives && !limit_reported) {
-        error("the scene has more than 2^24 primitives (" + std::to_string(next_prim) + " so far)");
+    // Stored primitives (each instanced object's once) and instances have a limit each.
+    if (s.kind == ShapeKind::Instance) {
+        ++instances;
+        if (s.prototype < g.prototypes.size() && g.prototypes[s.prototype] && !counted[s.prototype]) {
+            counted[s.prototype] = 1;
+            stored += g.prototypes[s.prototype]->geometry->primitive_count;
+        }
+    } else {
+        stored += next_prim - info.first_prim;
+    }
+    if (stored > kMaxPrimitives && !limit_reported) {
+        error("the scene has more than 2^24 primitives (" + std::to_string(stored) + " so far)");
+        limit_reported = true;
+    }
+    if (instances > kMaxPrimitives && !limit_reported) {
+        error("the scene has more than 2^24 instances");
         limit_reported = true;
     }
     if (trans && s.kind != ShapeKind::Instance) g.has_transmissive = true;
@@ -450,7 +466,8 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
                          std::vector<SpecError>& errors, bool use_bvh, int threads, bool prototype) {
     g.use_bvh = use_bvh;
     g.xforms.push_back(Transform{});
-    Builder b{spec, shapes, errors, g, prototype, threads, {}, {}, {}, 0, 0, 0};
+    Builder b{spec, shapes, errors, g, prototype, threads, {}, {}, {}, 0, 0, 0, {}, 0, 0};
+    b.counted.assign(spec.prototypes.size(), 0);
     // Every buffer at its final size up front: a million-triangle mesh would otherwise copy
     // them while growing, and fault in fresh pages for each copy. Huge pages only for the
     // temporaries: traversal reads the others (see prefer_huge_pages).

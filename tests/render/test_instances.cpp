@@ -280,6 +280,7 @@ TEST_CASE("instances store their object once: counts and memory") {
     CHECK(g->primitive_count() == 1 + 3201);  // the floor and the object once
     CHECK(g->instance_count() == 100);
     CHECK(g->instanced_primitive_count() == flat->primitive_count());
+    CHECK(g->instanced_triangle_count() == flat->triangle_count());
     CHECK(flat->triangle_count() == 320000);
     CHECK(g->memory_bytes() * 20 < flat->memory_bytes());
 }
