@@ -128,6 +128,9 @@ double primary_rate(const Scene& scene) {
         if (hits == 0) std::printf("no hits\n");
     }
     std::sort(rates.begin(), rates.end());
+    const double n = 5.0 * static_cast<double>(rays.size());
+    std::printf("  per ray: %.1f box tests, %.1f triangle tests\n", static_cast<double>(stats.box_tests) / n,
+                static_cast<double>(stats.triangle_tests) / n);
     return rates[2];
 }
 

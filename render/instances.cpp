@@ -164,7 +164,8 @@ bool InstanceRay::widen(const Transform& xi, const Bounds3f& root, double limit)
             if (o[a] < lo || o[a] > hi) return false;
             continue;
         }
-        double n = (lo - o[a]) / d[a], f = (hi - o[a]) / d[a];
+        const double inv = 1.0 / d[a];
+        double n = (lo - o[a]) * inv, f = (hi - o[a]) * inv;
         if (n > f) std::swap(n, f);
         t0 = std::max(t0, n);
         t1 = std::min(t1, f * (1 + kRelPad));
