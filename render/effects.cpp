@@ -94,14 +94,24 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
         }
         if (m.bump && m.bump_strength > 0) use(Effect::Bumps, i);
     };
-    for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        const ShapeSpec& sh = spec.shapes[i];
+    // A shape's effects with its material; an instance's are its members' (each with its own
+    // material, or the instance's where it inherits), attributed to the instance.
+    auto shape_effects = [&](const ShapeSpec& sh, uint32_t mat, size_t i) {
         if (sh.kind == ShapeKind::Mesh && sh.mesh && !sh.mesh->normals.empty()) use(Effect::SmoothNormals, i);
         if (sh.kind == ShapeKind::Csg && sh.csg) {
             use(Effect::Csg, i);
             csg_member_effects(*sh.csg, i, material, use);
         }
-        material(sh.material, i);
+        material(mat, i);
+    };
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& sh = spec.shapes[i];
+        if (sh.kind != ShapeKind::Instance || sh.prototype >= spec.prototypes.size()) {
+            shape_effects(sh, sh.material, i);
+            continue;
+        }
+        for (const ShapeSpec& member : spec.prototypes[sh.prototype].shapes)
+            shape_effects(member, member.material == kInheritMaterial ? sh.material : member.material, i);
     }
     return set;
 }

@@ -170,6 +170,7 @@ bool Geometry::occluded(const Ray& ray, double tmax, RayStats& stats, RayFilter 
         filter = RayFilter::All;
     }
     Counters c;
+    c.any_hit = true;
     RayPre r(ray);
     bool hit = false;
     switch (filter) {
@@ -202,22 +203,65 @@ Vec3 Geometry::offset_origin(const SurfaceHit& s, const Vec3& w) {
     return po;
 }
 
+size_t geometry_memory_bytes(const Geometry::Impl& g) {
+    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    size_t n = bytes(g.verts) + bytes(g.tris) + bytes(g.spheres) + bytes(g.boxes) + bytes(g.planes) +
+               bytes(g.xforms) + bytes(g.shapes) + bytes(g.shape_first) + bytes(g.tri_extra) +
+               bytes(g.plane_extra) + bytes(g.nodes) + bytes(g.order);
+    if (!g.others.empty())
+        n += bytes(g.others) + bytes(g.quadrics) + bytes(g.csgs) + bytes(g.instances) + bytes(g.prototypes) +
+             bytes(g.inherits);
+    for (const auto& p : g.prototypes)
+        if (p) n += p->memory_bytes();
+    return n;
+}
+
+// Instances count once each in Impl::primitive_count; their prototypes' primitives are stored once.
 size_t Geometry::primitive_count() const {
-    return impl_->primitive_count;
+    const Impl& g = *impl_;
+    size_t n = g.primitive_count;
+    if (g.instances.empty()) return n;
+    n -= instance_count();
+    for (const auto& p : g.prototypes)
+        if (p && p->geometry) n += p->geometry->primitive_count;
+    return n;
 }
 size_t Geometry::triangle_count() const {
-    return impl_->tris.size();
+    const Impl& g = *impl_;
+    size_t n = g.tris.size();
+    for (const auto& p : g.prototypes)
+        if (p) n += p->triangles;
+    return n;
+}
+size_t Geometry::instance_count() const {
+    const Impl& g = *impl_;
+    size_t n = 0;
+    for (size_t i = 0; i < g.instances.size(); ++i)
+        if (i == 0 || g.instances[i].prim != g.instances[i - 1].prim) ++n;
+    return n;
+}
+size_t Geometry::instanced_primitive_count() const {
+    const Impl& g = *impl_;
+    size_t n = g.primitive_count - instance_count();
+    for (size_t i = 0; i < g.instances.size(); ++i)
+        if (i == 0 || g.instances[i].prim != g.instances[i - 1].prim)
+            n += g.prototypes[g.instances[i].prototype]->geometry->primitive_count;
+    return n;
+}
+size_t Geometry::instanced_triangle_count() const {
+    const Impl& g = *impl_;
+    size_t n = g.tris.size();
+    for (size_t i = 0; i < g.instances.size(); ++i)
+        if (i == 0 || g.instances[i].prim != g.instances[i - 1].prim)
+            n += g.prototypes[g.instances[i].prototype]->triangles;
+    return n;
 }
 bool Geometry::has_transmissive() const {
     return impl_->has_transmissive;
 }
 
 size_t Geometry::memory_bytes() const {
-    const Impl& g = *impl_;
-    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-    return bytes(g.verts) + bytes(g.tris) + bytes(g.spheres) + bytes(g.boxes) + bytes(g.planes) +
-           bytes(g.xforms) + bytes(g.shapes) + bytes(g.shape_first) + bytes(g.tri_extra) +
-           bytes(g.plane_extra) + bytes(g.nodes) + bytes(g.order);
+    return geometry_memory_bytes(*impl_);
 }
 
 }  // namespace wsd::render

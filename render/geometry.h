@@ -44,6 +44,9 @@ struct SurfaceHit {
     uint32_t shape = 0;     // index into SceneSpec::shapes
     uint32_t prim = 0;      // the geometry-global primitive hit
     uint32_t material = 0;  // index into SceneSpec::materials
+    // A hit on a member of an instance: the member's index in its object (PrototypeSpec::shapes).
+    static constexpr uint32_t kNoMember = 0xffffffffu;
+    uint32_t member = kNoMember;
 };
 
 // Which primitives a query sees; shadow rays skip transmissive ones and then walk them in order.
@@ -71,13 +74,23 @@ public:
                           std::optional<HitRecord>* out) const;
     SurfaceHit surface(const Ray& ray, const HitRecord& hit) const;
 
+    // The object-to-world matrix of a hit on a member of an instance (s.member is set): the
+    // instance's times the member's, as the same shape written out flat would have.
+    Mat4 member_to_world(const SurfaceHit& s) const;
+
     // A ray origin just off the surface on the side of w, by the hit's error bound (pbrt-v4).
     static Vec3 offset_origin(const SurfaceHit& s, const Vec3& w);
 
-    size_t primitive_count() const;  // triangles + spheres + boxes + planes
-    size_t triangle_count() const;
+    // Primitives stored: every primitive outside instances, and each instanced object's
+    // primitives once (however many instances it has). Instances themselves are not counted.
+    size_t primitive_count() const;
+    size_t triangle_count() const;  // stored, as primitive_count
+    size_t instance_count() const;
+    // Primitives and triangles as rendered: each instance counts its object's.
+    size_t instanced_primitive_count() const;
+    size_t instanced_triangle_count() const;
     bool has_transmissive() const;
-    size_t memory_bytes() const;  // primitives and BVH
+    size_t memory_bytes() const;  // primitives and BVHs, each instanced object's once
 
     // The primitives and the BVH (geometry_impl.h), for render's own queries beyond these
     // (shadow shafts: shaft.h).

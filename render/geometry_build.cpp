@@ -17,25 +17,35 @@ constexpr int kMaxFaceErrorsPerMesh = 10;
 
 struct Builder {
     const SceneSpec& spec;
+    const std::vector<ShapeSpec>& shapes;  // spec.shapes, or a prototype's
     std::vector<SpecError>& errors;
     Geometry::Impl& g;
+    bool prototype = false;  // members may inherit their material; no planes, no instances
+    int threads = 0;
     std::vector<Bounds3f> bounds;   // per bounded primitive, canonical order
     std::vector<uint32_t> entries;  // encoded entries, same order
+    std::vector<uint8_t> inherits;  // prototypes: 1 where the primitive inherits its material
     uint32_t next_prim = 0;
+    size_t stored = 0, instances = 0;  // for the limits: primitives stored, instances
+    std::vector<uint8_t> counted;      // per prototype: its primitives are in `stored`
     size_t shape_index = 0;
     int shape_errors = 0;
 
     void error(std::string message, long face = -1) {
-        const ShapeSpec& s = spec.shapes[shape_index];
+        const ShapeSpec& s = shapes[shape_index];
         errors.push_back(SpecError{SpecItem::Shape, shape_index, s.tag, std::move(message), face});
         ++shape_errors;
     }
 
-    bool transmissive(uint32_t material) const { return spec.materials[material].transmission > 0; }
+    // An inherited material counts as opaque here; Prototype::inherits marks those primitives.
+    bool transmissive(uint32_t material) const {
+        return material != kInheritMaterial && spec.materials[material].transmission > 0;
+    }
 
     void add_bounded(PrimKind kind, uint32_t slot, const Bounds3f& b, bool trans) {
         bounds.push_back(b);
         entries.push_back(encode_entry(kind, slot, trans));
+        if (prototype) inherits.push_back(shapes[shape_index].material == kInheritMaterial ? 1 : 0);
         ++next_prim;
     }
 
@@ -55,6 +65,8 @@ struct Builder {
     void plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans);
     void other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool& trans);
+    void shape(size_t i, bool& limit_reported);
+    void finish_bvh();
     bool world_vertex(const Transform& x, const Vec3& p, Vec3f& out);
     bool degenerate(uint32_t i0, uint32_t i1, uint32_t i2) const;
 };
@@ -138,8 +150,7 @@ void Builder::box(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool 
 }
 
 bool Builder::world_vertex(const Transform& x, const Vec3& p, Vec3f& out) {
-    Vec3 w = x.point(p);
-    out = Vec3f(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z));
+    out = world_vertex_of(x, p);
     return is_finite(out);
 }
 
@@ -285,7 +296,7 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
 // (render/other_prims.h), one PrimKind::Other entry each.
 void Builder::other(OtherKind kind, const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool& trans) {
     const std::function<void(std::string)> report = [this](std::string m) { error(std::move(m)); };
-    const OtherBuild ob{g, spec, report, next_prim, info.xform, &trans};
+    const OtherBuild ob{g, spec, report, next_prim, info.xform, &trans, threads};
     std::optional<Bounds3f> b;
     uint32_t index = 0;
     switch (kind) {
@@ -304,24 +315,166 @@ void Builder::other(OtherKind kind, const ShapeSpec& s, const Transform& x, Shap
     }
     if (!b || shape_errors > 0) return;
     info.extra = static_cast<uint32_t>(g.others.size());
+    if (kind == OtherKind::Instance) {
+        // One entry per InstancePrim, all with the instance's one canonical id: an instance with
+        // opaque and transmissive members has an entry for each, so that ray filters apply to
+        // the members (render/instance_prims.h).
+        for (uint32_t k = index; k < g.instances.size(); ++k) {
+            const bool member_trans = g.instances[k].transmissive;
+            add_bounded(PrimKind::Other, static_cast<uint32_t>(g.others.size()), *b, member_trans);
+            if (member_trans) g.has_transmissive = true;
+            g.others.push_back(OtherPrim{kind, k});
+            --next_prim;
+        }
+        ++next_prim;
+        return;
+    }
     add_bounded(PrimKind::Other, static_cast<uint32_t>(g.others.size()), *b, trans);
     g.others.push_back(OtherPrim{kind, index});
 }
 
+// One shape: its material and transform checked, then built by its kind's code.
+void Builder::shape(size_t i, bool& limit_reported) {
+    const ShapeSpec& s = shapes[i];
+    shape_index = i;
+    shape_errors = 0;
+    // Members of an instanced object may take the instance's material; an instance without one
+    // is checked against its members by build_instance.
+    const bool inherit = (prototype || s.kind == ShapeKind::Instance) && s.material == kInheritMaterial;
+    if (!inherit && s.material >= spec.materials.size()) {
+        error("material index " + std::to_string(s.material) + " is out of range");
+        return;
+    }
+    if (prototype && (s.kind == ShapeKind::Instance || s.kind == ShapeKind::Plane)) {
+        error(s.kind == ShapeKind::Plane ? "a plane cannot be part of an instanced object (it has no bounds)"
+                                         : "an instanced object cannot contain an instance");
+        return;
+    }
+    Transform x;
+    if (auto msg = make_transform(s.object_to_world, x)) {
+        error(*msg);
+        return;
+    }
+    ShapeInfo info;
+    info.kind = s.kind;
+    info.material = s.material;
+    info.xform = add_transform(x);
+    info.first_prim = next_prim;
+    info.mirrored = x.det < 0;
+    bool trans = transmissive(s.material);
+    switch (s.kind) {
+        case ShapeKind::Sphere:
+            sphere(s, x, info, trans);
+            break;
+        case ShapeKind::Box:
+            box(s, x, info, trans);
+            break;
+        case ShapeKind::Triangle:
+            triangle(s, x, info, trans);
+            break;
+        case ShapeKind::Plane:
+            plane(s, x, info, trans);
+            break;
+        case ShapeKind::Mesh:
+            mesh(s, x, info, trans);
+            break;
+        case ShapeKind::Cylinder:
+        case ShapeKind::Cone:
+        case ShapeKind::Torus:
+        case ShapeKind::Disc:
+            other(OtherKind::Quadric, s, x, info, trans);
+            break;
+        case ShapeKind::Csg:
+            other(OtherKind::Csg, s, x, info, trans);
+            break;
+        case ShapeKind::Instance:
+            other(OtherKind::Instance, s, x, info, trans);
+            break;
+    }
+    if (shape_errors > 0) return;
+    // Stored primitives (each instanced object's once) and instances have a limit each.
+    if (s.kind == ShapeKind::Instance) {
+        ++instances;
+        if (s.prototype < g.prototypes.size() && g.prototypes[s.prototype] && !counted[s.prototype]) {
+            counted[s.prototype] = 1;
+            stored += g.prototypes[s.prototype]->geometry->primitive_count;
+        }
+    } else {
+        stored += next_prim - info.first_prim;
+    }
+    if (stored > kMaxPrimitives && !limit_reported) {
+        error("the scene has more than 2^24 primitives (" + std::to_string(stored) + " so far)");
+        limit_reported = true;
+    }
+    if (instances > kMaxPrimitives && !limit_reported) {
+        error("the scene has more than 2^24 instances");
+        limit_reported = true;
+    }
+    if (trans && s.kind != ShapeKind::Instance) g.has_transmissive = true;
+    g.shapes.push_back(std::move(info));
+    g.shape_first.push_back(g.shapes.back().first_prim);
+}
+
+// The BVH over the bounded primitives, which are then stored in leaf order so that a leaf's
+// data is contiguous.
+void Builder::finish_bvh() {
+    BvhOptions opt;
+    opt.threads = threads;
+    Bvh bvh = build_bvh(bounds, opt);
+    g.nodes = to_bvh4(bvh.nodes);
+    g.bvh_depth = bvh.depth;
+    std::vector<TriPrim> tris;
+    std::vector<SpherePrim> spheres;
+    std::vector<BoxPrim> boxes;
+    tris.reserve(g.tris.size());
+    spheres.reserve(g.spheres.size());
+    boxes.reserve(g.boxes.size());
+    if (prototype) g.inherits.resize(inherits.size());
+    g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
+    for (size_t k = 0; k < g.order.size(); ++k) {
+        const uint32_t from = g.order[k];
+        uint32_t e = entries[from];
+        uint32_t slot = e & kSlotMask;
+        auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
+        uint32_t ns = 0;
+        switch (kind) {
+            case PrimKind::Triangle:
+                ns = static_cast<uint32_t>(tris.size());
+                tris.push_back(g.tris[slot]);
+                break;
+            case PrimKind::Sphere:
+                ns = static_cast<uint32_t>(spheres.size());
+                spheres.push_back(g.spheres[slot]);
+                break;
+            case PrimKind::Box:
+                ns = static_cast<uint32_t>(boxes.size());
+                boxes.push_back(g.boxes[slot]);
+                break;
+            case PrimKind::Other:
+                ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
+                break;
+        }
+        g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
+        if (prototype) g.inherits[k] = inherits[from];
+    }
+    g.tris = std::move(tris);
+    g.spheres = std::move(spheres);
+    g.boxes = std::move(boxes);
+}
+
 }  // namespace
 
-std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
-                                          int threads) {
-    auto impl = std::make_unique<Impl>();
-    Impl& g = *impl;
+bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::vector<ShapeSpec>& shapes,
+                         std::vector<SpecError>& errors, bool use_bvh, int threads, bool prototype) {
     g.use_bvh = use_bvh;
     g.xforms.push_back(Transform{});
-    Builder b{spec, errors, g, {}, {}, 0, 0, 0};
+    Builder b{spec, shapes, errors, g, prototype, threads, {}, {}, {}, 0, 0, 0, {}, 0, 0};
+    b.counted.assign(spec.prototypes.size(), 0);
     // Every buffer at its final size up front: a million-triangle mesh would otherwise copy
     // them while growing, and fault in fresh pages for each copy. Huge pages only for the
     // temporaries: traversal reads the others (see prefer_huge_pages).
     size_t n_tris = 0, n_verts = 0, n_bounded = 0;
-    for (const ShapeSpec& s : spec.shapes) {
+    for (const ShapeSpec& s : shapes) {
         const bool mesh = s.kind == ShapeKind::Mesh && s.mesh;
         n_tris += mesh ? s.mesh->faces.size() : (s.kind == ShapeKind::Triangle ? 1 : 0);
         n_verts += mesh ? s.mesh->vertices.size() : (s.kind == ShapeKind::Triangle ? 3 : 0);
@@ -336,115 +489,26 @@ std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<Spe
     reserve_huge(b.entries, n_bounded);
     const size_t errors_before = errors.size();
     bool limit_reported = false;
-
-    for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        const ShapeSpec& s = spec.shapes[i];
-        b.shape_index = i;
-        b.shape_errors = 0;
-        if (s.material >= spec.materials.size()) {
-            b.error("material index " + std::to_string(s.material) + " is out of range");
-            continue;
-        }
-        Transform x;
-        if (auto msg = make_transform(s.object_to_world, x)) {
-            b.error(*msg);
-            continue;
-        }
-        ShapeInfo info;
-        info.kind = s.kind;
-        info.material = s.material;
-        info.xform = b.add_transform(x);
-        info.first_prim = b.next_prim;
-        info.mirrored = x.det < 0;
-        bool trans = b.transmissive(s.material);
-        switch (s.kind) {
-            case ShapeKind::Sphere:
-                b.sphere(s, x, info, trans);
-                break;
-            case ShapeKind::Box:
-                b.box(s, x, info, trans);
-                break;
-            case ShapeKind::Triangle:
-                b.triangle(s, x, info, trans);
-                break;
-            case ShapeKind::Plane:
-                b.plane(s, x, info, trans);
-                break;
-            case ShapeKind::Mesh:
-                b.mesh(s, x, info, trans);
-                break;
-            case ShapeKind::Cylinder:
-            case ShapeKind::Cone:
-            case ShapeKind::Torus:
-            case ShapeKind::Disc:
-                b.other(OtherKind::Quadric, s, x, info, trans);
-                break;
-            case ShapeKind::Csg:
-                b.other(OtherKind::Csg, s, x, info, trans);
-                break;
-            case ShapeKind::Instance:
-                b.other(OtherKind::Instance, s, x, info, trans);
-                break;
-        }
-        if (b.shape_errors > 0) continue;
-        if (b.next_prim > kMaxPrimitives && !limit_reported) {
-            b.error("the scene has more than 2^24 primitives (" + std::to_string(b.next_prim) + " so far)");
-            limit_reported = true;
-        }
-        if (trans) g.has_transmissive = true;
-        g.shapes.push_back(std::move(info));
-        g.shape_first.push_back(g.shapes.back().first_prim);
-    }
-    if (errors.size() > errors_before) return nullptr;
+    for (size_t i = 0; i < shapes.size(); ++i) b.shape(i, limit_reported);
+    if (errors.size() > errors_before) return false;
     g.primitive_count = b.next_prim;
 
     if (use_bvh && !b.bounds.empty()) {
-        BvhOptions opt;
-        opt.threads = threads;
-        Bvh bvh = build_bvh(b.bounds, opt);
-        g.nodes = to_bvh4(bvh.nodes);
-        g.bvh_depth = bvh.depth;
-        // Store the bounded primitives in leaf order, so that a leaf's data is contiguous.
-        std::vector<TriPrim> tris;
-        std::vector<SpherePrim> spheres;
-        std::vector<BoxPrim> boxes;
-        tris.reserve(g.tris.size());
-        spheres.reserve(g.spheres.size());
-        boxes.reserve(g.boxes.size());
-        g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
-        for (size_t k = 0; k < g.order.size(); ++k) {
-            uint32_t e = b.entries[g.order[k]];
-            uint32_t slot = e & kSlotMask;
-            auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
-            uint32_t ns = 0;
-            switch (kind) {
-                case PrimKind::Triangle:
-                    ns = static_cast<uint32_t>(tris.size());
-                    tris.push_back(g.tris[slot]);
-                    break;
-                case PrimKind::Sphere:
-                    ns = static_cast<uint32_t>(spheres.size());
-                    spheres.push_back(g.spheres[slot]);
-                    break;
-                case PrimKind::Box:
-                    ns = static_cast<uint32_t>(boxes.size());
-                    boxes.push_back(g.boxes[slot]);
-                    break;
-                case PrimKind::Other:
-                    ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
-                    break;
-            }
-            g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
-        }
-        g.tris = std::move(tris);
-        g.spheres = std::move(spheres);
-        g.boxes = std::move(boxes);
+        b.finish_bvh();
     } else {
         g.order = std::move(b.entries);
+        if (prototype) g.inherits = std::move(b.inherits);
     }
     g.verts.shrink_to_fit();
     g.tris.shrink_to_fit();
     g.order.shrink_to_fit();
+    return true;
+}
+
+std::unique_ptr<Geometry> Geometry::build(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
+                                          int threads) {
+    auto impl = std::make_unique<Impl>();
+    if (!build_geometry_into(*impl, spec, spec.shapes, errors, use_bvh, threads, false)) return nullptr;
     return std::unique_ptr<Geometry>(new Geometry(std::move(impl)));
 }
 

@@ -72,8 +72,9 @@ struct Geometry::Impl {
     std::vector<CsgPrim> csgs;                           // CSG solids
     std::vector<InstancePrim> instances;                 // instances of prototypes
     std::vector<std::unique_ptr<Prototype>> prototypes;  // SceneSpec::prototypes, built when used
-    std::vector<Bvh4Node> nodes;  // the BVH in its 4-wide traversal form; empty without BVH
-    std::vector<uint32_t> order;  // encoded entries; leaf ranges (BVH) or canonical order
+    std::vector<Bvh4Node> nodes;    // the BVH in its 4-wide traversal form; empty without BVH
+    std::vector<uint32_t> order;    // encoded entries; leaf ranges (BVH) or canonical order
+    std::vector<uint8_t> inherits;  // a prototype's: per order entry, 1 when its material is inherited
     bool use_bvh = true;
     bool has_transmissive = false;
     size_t primitive_count = 0;
@@ -81,5 +82,22 @@ struct Geometry::Impl {
 
     uint32_t shape_of(uint32_t prim) const;
 };
+
+// A triangle vertex in world space as the build stores it: the double transform, then rounded
+// to float. Instances compute their vertices with it too (render/instances.cpp), so that an
+// instance's triangles are exactly those of the same geometry written out flat.
+inline Vec3f world_vertex_of(const Transform& x, const Vec3& p) {
+    const Vec3 w = x.point(p);
+    return Vec3f(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z));
+}
+
+// Everything `g` stores (primitives, BVHs, instanced objects' geometry once each), in bytes.
+size_t geometry_memory_bytes(const Geometry::Impl& g);
+
+// Geometry::build's work: validates and builds `shapes` (spec.shapes, or a prototype's shapes
+// with `prototype` set: members may inherit their material, planes and instances are refused)
+// into the empty `g`. Returns false after appending errors (their index is into `shapes`).
+bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::vector<ShapeSpec>& shapes,
+                         std::vector<SpecError>& errors, bool use_bvh, int threads, bool prototype);
 
 }  // namespace wsd::render

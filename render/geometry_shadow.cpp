@@ -196,6 +196,7 @@ bool ShaftCandidates::occluded(const Geometry& geom, const Ray& ray, double tmax
         return occluded(geom, scaled(ray, s), std::ldexp(tmax, -s), stats);
     const Impl& g = geom.impl();
     Counters c;
+    c.any_hit = true;
     bool hit = false;
     // Spheres in world space need only d·d; the rest the lazily made RayPre.
     LazyRayPre pre(ray);

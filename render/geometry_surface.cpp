@@ -8,13 +8,11 @@
 
 namespace wsd::render {
 
-namespace {
-
 using Impl = Geometry::Impl;
 
-void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit, SurfaceHit& s) {
-    const TriPrim& tri = g.tris[hit.slot];
-    const Vec3 v0(g.verts[tri.v[0]]), v1(g.verts[tri.v[1]]), v2(g.verts[tri.v[2]]);
+void triangle_surface_of(const Vec3 (&v)[3], const uint32_t (&local)[3], const ShapeInfo& info,
+                         const TriExtra* extra, const Transform& x, const HitRecord& hit, SurfaceHit& s) {
+    const Vec3 &v0 = v[0], &v1 = v[1], &v2 = v[2];
     const double b1 = hit.b1, b2 = hit.b2, b0 = 1 - b1 - b2;
     s.p = b0 * v0 + b1 * v1 + b2 * v2;
     s.p_error = gamma(7) * (abs3(b0 * v0) + abs3(b1 * v1) + abs3(b2 * v2));
@@ -22,18 +20,15 @@ void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit
     s.ng = info.mirrored ? -ng : ng;
     s.ns = s.ng;
     s.uv = Vec2(b1, b2);
-    const Transform& x = g.xforms[info.xform];
     s.p_object = x.identity ? s.p : x.inv_point(s.p);
 
-    if (info.kind == ShapeKind::Triangle) {
-        const TriExtra& e = g.tri_extra[info.extra];
-        if (e.has_uv) s.uv = b0 * e.uv[0] + b1 * e.uv[1] + b2 * e.uv[2];
+    if (extra != nullptr) {
+        if (extra->has_uv) s.uv = b0 * extra->uv[0] + b1 * extra->uv[1] + b2 * extra->uv[2];
         return;
     }
     if (!info.mesh) return;
     const MeshData& m = *info.mesh;
-    const uint32_t i0 = tri.v[0] - info.vertex_offset, i1 = tri.v[1] - info.vertex_offset,
-                   i2 = tri.v[2] - info.vertex_offset;
+    const uint32_t i0 = local[0], i1 = local[1], i2 = local[2];
     if (!m.uvs.empty()) s.uv = b0 * Vec2(m.uvs[i0]) + b1 * Vec2(m.uvs[i1]) + b2 * Vec2(m.uvs[i2]);
     if (!m.normals.empty()) {
         Vec3 n = b0 * Vec3(m.normals[i0]) + b1 * Vec3(m.normals[i1]) + b2 * Vec3(m.normals[i2]);
@@ -46,19 +41,16 @@ void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit
     }
 }
 
-void sphere_surface(const Impl& g, const ShapeInfo& info, const Ray& ray, const HitRecord& hit,
-                    SurfaceHit& s) {
-    const SpherePrim& sp = g.spheres[hit.slot];
+void sphere_surface_of(const SpherePrim& sp, const Transform& x, const Ray& ray, const HitRecord& hit,
+                       SurfaceHit& s) {
     if (sp.xform == kNoTransform) {
         Vec3 rel = ray.o + hit.t * ray.d - sp.center;
         rel = safe_normalize(rel, Vec3(0, 1, 0)) * sp.radius;
         s.p = sp.center + rel;
         s.p_error = gamma(6) * abs3(rel) + gamma(2) * abs3(s.p);
         s.ng = safe_normalize(rel, Vec3(0, 1, 0));
-        const Transform& x = g.xforms[info.xform];
         s.p_object = x.identity ? rel : x.inv_vector(rel);
     } else {
-        const Transform& x = g.xforms[sp.xform];
         Vec3 o = x.inv_point(ray.o), d = x.inv_vector(ray.d);
         Vec3 rel = safe_normalize(o + hit.t * d - sp.center, Vec3(0, 1, 0)) * sp.radius;
         Vec3 p_obj = sp.center + rel;
@@ -71,13 +63,12 @@ void sphere_surface(const Impl& g, const ShapeInfo& info, const Ray& ray, const 
     s.uv = sphere_uv(safe_normalize(s.p_object, Vec3(0, 1, 0)));
 }
 
-void box_surface(const Impl& g, const Ray& ray, const HitRecord& hit, SurfaceHit& s) {
-    const BoxPrim& bx = g.boxes[hit.slot];
+void box_surface_of(const BoxPrim& bx, const Transform& x, const Ray& ray, const HitRecord& hit,
+                    SurfaceHit& s) {
     const int face = static_cast<int>(hit.b1);
     const int axis = face >> 1;
     // The identity goes through the same formulas as any transform (exactly), so that scaling
     // a scene by 2^k scales every bound exactly.
-    const Transform& x = g.xforms[bx.xform == kNoTransform ? 0 : bx.xform];
     Vec3 o = x.inv_point(ray.o), d = x.inv_vector(ray.d);
     Vec3 p = o + hit.t * d;
     Vec3 e = gamma(3) * (abs3(o) + abs3(hit.t * d)) + x.inv_point_error(ray.o);
@@ -92,6 +83,27 @@ void box_surface(const Impl& g, const Ray& ray, const HitRecord& hit, SurfaceHit
     s.ns = s.ng;
     s.p_object = p;
     s.uv = box_uv(p, bx.lo, bx.hi, face);
+}
+
+namespace {
+
+void triangle_surface(const Impl& g, const ShapeInfo& info, const HitRecord& hit, SurfaceHit& s) {
+    const TriPrim& tri = g.tris[hit.slot];
+    const Vec3 v[3] = {Vec3(g.verts[tri.v[0]]), Vec3(g.verts[tri.v[1]]), Vec3(g.verts[tri.v[2]])};
+    const uint32_t local[3] = {tri.v[0] - info.vertex_offset, tri.v[1] - info.vertex_offset,
+                               tri.v[2] - info.vertex_offset};
+    const TriExtra* extra = info.kind == ShapeKind::Triangle ? &g.tri_extra[info.extra] : nullptr;
+    triangle_surface_of(v, local, info, extra, g.xforms[info.xform], hit, s);
+}
+
+void sphere_surface(const Impl& g, const ShapeInfo& info, const Ray& ray, const HitRecord& hit,
+                    SurfaceHit& s) {
+    sphere_surface_of(g.spheres[hit.slot], g.xforms[info.xform], ray, hit, s);
+}
+
+void box_surface(const Impl& g, const Ray& ray, const HitRecord& hit, SurfaceHit& s) {
+    const BoxPrim& bx = g.boxes[hit.slot];
+    box_surface_of(bx, g.xforms[bx.xform == kNoTransform ? 0 : bx.xform], ray, hit, s);
 }
 
 void plane_surface(const Impl& g, const ShapeInfo& info, const Ray& ray, const HitRecord& hit,

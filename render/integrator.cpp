@@ -151,8 +151,7 @@ private:
         const bool front = glm::dot(ray.d, s.ng) < 0;
         const Vec3 ng_v = front ? s.ng : -s.ng;
         Vec3 ns = s.ns;
-        if (m.bump)
-            ns = bump_normal(*m.bump, m.bump_strength, s, ns, scene_.object_to_world(s.shape), stats_);
+        if (m.bump) ns = bump_normal(*m.bump, m.bump_strength, s, ns, scene_.object_to_world(s), stats_);
         // The shading normal, turned to the viewer's side of the surface.
         const Vec3 N = glm::dot(ns, ng_v) < 0 ? -ns : ns;
         const Color c = m.texture ? m.texture->eval(s, stats_) : m.color;

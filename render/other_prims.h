@@ -38,6 +38,16 @@ void csg_surface(const Geometry::Impl& g, const CsgPrim& q, const ShapeInfo& inf
 void instance_surface(const Geometry::Impl& g, const InstancePrim& q, const ShapeInfo& info, const Ray& ray,
                       const HitRecord& hit, SurfaceHit& s);
 
+// The surfaces of the kinds traversal tests inline, from the primitive and its shape's transform
+// (render/geometry_surface.cpp): Geometry::surface and instances share them. Triangle: world
+// vertices v, their indices in the mesh (local), extra for a lone triangle (null for a mesh).
+void triangle_surface_of(const Vec3 (&v)[3], const uint32_t (&local)[3], const ShapeInfo& info,
+                         const TriExtra* extra, const Transform& x, const HitRecord& hit, SurfaceHit& s);
+void sphere_surface_of(const SpherePrim& sp, const Transform& x, const Ray& ray, const HitRecord& hit,
+                       SurfaceHit& s);
+void box_surface_of(const BoxPrim& bx, const Transform& x, const Ray& ray, const HitRecord& hit,
+                    SurfaceHit& s);
+
 // Building (Geometry::build): validates shape `s` (every problem through `error`), appends its
 // record to the kind's store with canonical id `prim` and returns its world bounds, or nullopt
 // after an error. `x` is s.object_to_world made a Transform, stored as Impl::xforms[xform].
@@ -50,6 +60,7 @@ struct OtherBuild {
     uint32_t prim;
     uint32_t xform;
     bool* transmissive = nullptr;
+    int threads = 0;  // for building nested BVHs (0: all cores)
 };
 std::optional<Bounds3f> build_quadric(const OtherBuild& b, const ShapeSpec& s, const Transform& x);
 std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const Transform& x);

@@ -16,6 +16,8 @@ using Impl = Geometry::Impl;
 
 struct Counters {
     uint64_t boxes = 0, tri_tests = 0, tri_hits = 0, sph_tests = 0, sph_hits = 0, shape_boxes = 0, planes = 0;
+    // An any-hit query: primitives made of others (instances) may stop at their first hit.
+    bool any_hit = false;
     void flush(RayStats& s) const {
         s.box_tests += boxes;
         s.triangle_tests += tri_tests;
@@ -46,8 +48,9 @@ struct Best {
         }
     }
     // A hit from test_entry, at entry slot `slot_new`.
+    // An instance's entries share its id: a tie between them goes to the lower inner id.
     void offer(const HitRecord& h, uint32_t slot_new) {
-        if (h.t < t || h.prim < prim) {
+        if (h.t < t || h.prim < prim || (h.prim == prim && h.inner_prim < inner_prim)) {
             t = h.t, prim = h.prim, slot = slot_new, b1 = h.b1, b2 = h.b2;
             member = h.member, member_slot = h.member_slot, inner_prim = h.inner_prim,
             inner_slot = h.inner_slot;
@@ -108,6 +111,37 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     return true;
 }
 
+// A sphere; x is its transform (SpherePrim::xform), null for kNoTransform. Counted.
+[[gnu::always_inline]] inline bool test_sphere(const SpherePrim& s, const Transform* x, const RayPre& r,
+                                               double limit, Counters& c, double& t) {
+    ++c.sph_tests;
+    bool hit;
+    if (x == nullptr) {
+        hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, t);
+    } else {
+        Vec3 o = x->inv_point(r.o), d = x->inv_vector(r.d);
+        double a = glm::dot(d, d);
+        hit =
+            intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius, sphere_origin_error(*x, s, r.o), limit, t);
+    }
+    if (!hit) return false;
+    ++c.sph_hits;
+    return true;
+}
+
+// A box; x is its transform (BoxPrim::xform), null for the identity. Counted.
+[[gnu::always_inline]] inline bool test_box(const BoxPrim& bx, const Transform* x, const RayPre& r,
+                                            double limit, Counters& c, double& t, int& face) {
+    ++c.shape_boxes;
+    if (x == nullptr) {
+        // The identity's own error bound (γ₃|o|, as a transform would give), so that a
+        // scene scaled by 2^k decides edge cases exactly as the unscaled one.
+        return intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit, t, face);
+    }
+    return intersect_box_local(x->inv_point(r.o), x->inv_vector(r.d), bx.lo, bx.hi,
+                               x->inv_point_error(r.o) + bx.band, limit, t, face);
+}
+
 // Defined in render/other_prims.cpp: the one dispatch of PrimKind::Other entries.
 bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Counters& c, HitRecord& h);
 
@@ -127,39 +161,18 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
         }
         case 1: {
             const SpherePrim& s = g.spheres[slot];
-            ++c.sph_tests;
-            bool hit;
-            if (s.xform == kNoTransform) {
-                hit = intersect_sphere(r.o, r.d, r.a, r.inv_a, s.center, s.radius, Vec3(0), limit, h.t);
-            } else {
-                const Transform& x = g.xforms[s.xform];
-                Vec3 o = x.inv_point(r.o), d = x.inv_vector(r.d);
-                double a = glm::dot(d, d);
-                hit = intersect_sphere(o, d, a, 1.0 / a, s.center, s.radius, sphere_origin_error(x, s, r.o),
-                                       limit, h.t);
-            }
-            if (!hit) return false;
-            ++c.sph_hits;
+            if (!test_sphere(s, s.xform == kNoTransform ? nullptr : &g.xforms[s.xform], r, limit, c, h.t))
+                return false;
             h.prim = s.prim;
             h.b1 = h.b2 = 0;
             return true;
         }
         case 2: {
             const BoxPrim& bx = g.boxes[slot];
-            ++c.shape_boxes;
             int face = 0;
-            bool hit;
-            if (bx.xform == kNoTransform) {
-                // The identity's own error bound (γ₃|o|, as a transform would give), so that a
-                // scene scaled by 2^k decides edge cases exactly as the unscaled one.
-                hit = intersect_box_local(r.o, r.d, bx.lo, bx.hi, gamma(3) * abs3(r.o) + bx.band, limit, h.t,
-                                          face);
-            } else {
-                const Transform& x = g.xforms[bx.xform];
-                hit = intersect_box_local(x.inv_point(r.o), x.inv_vector(r.d), bx.lo, bx.hi,
-                                          x.inv_point_error(r.o) + bx.band, limit, h.t, face);
-            }
-            if (!hit) return false;
+            if (!test_box(bx, bx.xform == kNoTransform ? nullptr : &g.xforms[bx.xform], r, limit, c, h.t,
+                          face))
+                return false;
             h.prim = bx.prim;
             h.b1 = face;
             h.b2 = 0;

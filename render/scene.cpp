@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "render/aabb.h"
 #include "render/csg_prims.h"
@@ -127,50 +128,89 @@ bool Scene::may_cross_transmissive(const Vec3& a, const Vec3& b) const {
     return false;
 }
 
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The box of shape `sh` through m into [lo, hi]; false for a shape without finite bounds here.
+bool shape_box(const ShapeSpec& sh, const Mat4& m, Vec3& lo, Vec3& hi) {
+    switch (sh.kind) {
+        case ShapeKind::Sphere:
+            add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
+            return true;
+        case ShapeKind::Box:
+            add_box_corners(m, sh.box_min, sh.box_max, lo, hi);
+            return true;
+        case ShapeKind::Triangle:
+            for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
+            return true;
+        case ShapeKind::Mesh: {
+            Vec3 mlo(kInf), mhi(-kInf);
+            for (const glm::vec3& v : sh.mesh->vertices) {
+                mlo = glm::min(mlo, Vec3(v));
+                mhi = glm::max(mhi, Vec3(v));
+            }
+            if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
+            return true;
+        }
+        default:
+            return false;
+    }
+}
+
+// An instanced object's transmissive members in its own frame: those with their own
+// transmissive material, and those that inherit (transmissive when the instance is).
+struct PrototypeGlass {
+    Vec3 own_lo{kInf}, own_hi{-kInf}, inherit_lo{kInf}, inherit_hi{-kInf};
+    bool own_unbounded = false, inherit_unbounded = false;
+};
+
+PrototypeGlass prototype_glass(const SceneSpec& spec, const PrototypeSpec& p) {
+    PrototypeGlass g;
+    for (const ShapeSpec& m : p.shapes) {
+        const bool inherit = m.material == kInheritMaterial;
+        if (m.kind == ShapeKind::Csg) {  // its members' materials decide: bounded conservatively
+            g.own_unbounded = true;
+            continue;
+        }
+        if (!inherit && !(spec.materials[m.material].transmission > 0)) continue;
+        if (!shape_box(m, m.object_to_world, inherit ? g.inherit_lo : g.own_lo,
+                       inherit ? g.inherit_hi : g.own_hi))
+            (inherit ? g.inherit_unbounded : g.own_unbounded) = true;
+    }
+    return g;
+}
+
+}  // namespace
+
 void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
     constexpr size_t kMaxBoxes = 16;  // beyond this, one union box (the test is linear)
+    std::vector<std::optional<PrototypeGlass>> glass(spec.prototypes.size());
     for (const ShapeSpec& sh : spec.shapes) {
+        // An instance without a material of its own has members that all have theirs.
+        const bool has_material = sh.material < spec.materials.size();
         const bool trans = sh.kind == ShapeKind::Csg && sh.csg ? csg_transmissive(spec, *sh.csg, sh.material)
-                                                               : spec.materials[sh.material].transmission > 0;
-        if (!trans) continue;
-        Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+                           : has_material                      ? spec.materials[sh.material].transmission > 0
+                                                               : false;
+        Vec3 lo(kInf), hi(-kInf);
         const Mat4& m = sh.object_to_world;
-        switch (sh.kind) {
-            case ShapeKind::Sphere:
-                add_box_corners(m, sh.center - Vec3(sh.radius), sh.center + Vec3(sh.radius), lo, hi);
-                break;
-            case ShapeKind::Box:
-                add_box_corners(m, sh.box_min, sh.box_max, lo, hi);
-                break;
-            case ShapeKind::Triangle:
-                for (const Vec3& v : sh.v) add_box_corners(m, v, v, lo, hi);
-                break;
-            case ShapeKind::Mesh: {
-                Vec3 mlo(std::numeric_limits<double>::infinity()),
-                    mhi(-std::numeric_limits<double>::infinity());
-                for (const glm::vec3& v : sh.mesh->vertices) {
-                    mlo = glm::min(mlo, Vec3(v));
-                    mhi = glm::max(mhi, Vec3(v));
-                }
-                if (!sh.mesh->vertices.empty()) add_box_corners(m, mlo, mhi, lo, hi);
-                break;
-            }
-            case ShapeKind::Csg: {
-                Vec3 clo, chi;
-                if (sh.csg && csg_local_bounds(spec, *sh.csg, clo, chi))
-                    add_box_corners(m, clo, chi, lo, hi);
-                else
-                    transmissive_unbounded_ = true;
-                break;
-            }
-            case ShapeKind::Plane:
-            case ShapeKind::Cylinder:
-            case ShapeKind::Cone:
-            case ShapeKind::Torus:
-            case ShapeKind::Disc:
-            case ShapeKind::Instance:
+        if (sh.kind == ShapeKind::Instance) {
+            if (sh.prototype >= glass.size()) continue;
+            auto& pg = glass[sh.prototype];
+            if (!pg) pg = prototype_glass(spec, spec.prototypes[sh.prototype]);
+            if (pg->own_unbounded || (trans && pg->inherit_unbounded)) transmissive_unbounded_ = true;
+            if (pg->own_lo.x <= pg->own_hi.x) add_box_corners(m, pg->own_lo, pg->own_hi, lo, hi);
+            if (trans && pg->inherit_lo.x <= pg->inherit_hi.x)
+                add_box_corners(m, pg->inherit_lo, pg->inherit_hi, lo, hi);
+        } else if (sh.kind == ShapeKind::Csg && sh.csg) {
+            Vec3 clo, chi;
+            if (!trans) continue;
+            if (csg_local_bounds(spec, *sh.csg, clo, chi))
+                add_box_corners(m, clo, chi, lo, hi);
+            else
                 transmissive_unbounded_ = true;
-                break;
+        } else if (trans && !shape_box(sh, m, lo, hi)) {
+            transmissive_unbounded_ = true;
         }
         if (transmissive_unbounded_ || !(lo.x <= hi.x)) continue;
         // Pad by a relative margin far above the rounding of the shapes' own intersection code,
@@ -258,13 +298,31 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
 
     bool shapes_ok = true;
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        if (spec.shapes[i].material >= spec.materials.size()) {
+        const bool instance_without = spec.shapes[i].kind == ShapeKind::Instance &&
+                                      spec.shapes[i].material == kInheritMaterial;
+        if (spec.shapes[i].material >= spec.materials.size() && !instance_without) {
             errors.push_back({SpecItem::Shape, i, spec.shapes[i].tag, "material index out of range", -1});
             shapes_ok = false;
         } else if (!check_shape(spec.shapes[i], i, errors)) {
             shapes_ok = false;
         }
         scene->object_to_world_.push_back(spec.shapes[i].object_to_world);
+    }
+    // An instanced object's members, checked once, at its first instance (their own tags).
+    std::vector<uint8_t> checked(spec.prototypes.size(), 0);
+    for (size_t i = 0; i < spec.shapes.size(); ++i) {
+        const ShapeSpec& sh = spec.shapes[i];
+        if (sh.kind != ShapeKind::Instance || sh.prototype >= checked.size() || checked[sh.prototype])
+            continue;
+        checked[sh.prototype] = 1;
+        for (const ShapeSpec& m : spec.prototypes[sh.prototype].shapes) {
+            if (m.material != kInheritMaterial && m.material >= spec.materials.size()) {
+                errors.push_back({SpecItem::Shape, i, m.tag, "material index out of range", -1});
+                shapes_ok = false;
+            } else if (!check_shape(m, i, errors)) {
+                shapes_ok = false;
+            }
+        }
     }
     if (shapes_ok) scene->geometry_ = Geometry::build(spec, errors, use_bvh, threads);
     if (errors.size() != errors_before || !scene->geometry_ || !materials_ok) return nullptr;

@@ -35,6 +35,10 @@ public:
     const std::vector<Light>& lights() const { return lights_; }
     const std::vector<Material>& materials() const { return materials_; }
     const Mat4& object_to_world(uint32_t shape) const { return object_to_world_[shape]; }
+    // The matrix of the shape hit (for a member of an instance, instance · member).
+    Mat4 object_to_world(const SurfaceHit& s) const {
+        return s.member == SurfaceHit::kNoMember ? object_to_world_[s.shape] : geometry_->member_to_world(s);
+    }
     const EffectSet& effects() const { return effects_; }
     bool has_multi_cell_area_light() const { return multi_cell_area_light_; }
     // False when the segment a→b certainly crosses no transmissive surface (it misses the
