@@ -84,8 +84,9 @@ Stmt* Parser::parse_return() {
     advance();
     if (group_bodies_ > 0) {
         if (Diagnostic* d = error(s->keyword, "'return' cannot be in a group or CSG body"))
-            d->help.push_back("a body builds an object value: return the whole value, as in "
-                              "'return group { ... }'");
+            d->help.push_back(
+                "a body builds an object value: return the whole value, as in "
+                "'return group { ... }'");
         panic_ = false;
     } else if (!return_allowed_) {
         if (Diagnostic* d = error(s->keyword, "'return' outside a function body"))

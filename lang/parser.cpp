@@ -15,9 +15,9 @@ namespace detail {
 namespace {
 
 const std::vector<std::string> statement_words = {
-    "let",    "for",  "if",       "include", "settings",     "camera",     "light",  "sphere",
-    "box",    "triangle", "plane", "mesh",   "cylinder",     "cone",       "torus",  "disc",
-    "group",  "union", "intersection", "difference", "object", "fn",      "return"};
+    "let",   "for",      "if",           "include",    "settings", "camera", "light", "sphere",
+    "box",   "triangle", "plane",        "mesh",       "cylinder", "cone",   "torus", "disc",
+    "group", "union",    "intersection", "difference", "object",   "fn",     "return"};
 
 }  // namespace
 

@@ -39,7 +39,18 @@ using ObjectPtr = std::shared_ptr<const ObjectValue>;  // lang/object_value.h
 using FunctionPtr = std::shared_ptr<const FunctionValue>;
 
 // The order matches the variant's alternatives in Value.
-enum class ValueType : uint8_t { Number, Bool, String, Vector2, Vector3, List, Material, Texture, Object, Function };
+enum class ValueType : uint8_t {
+    Number,
+    Bool,
+    String,
+    Vector2,
+    Vector3,
+    List,
+    Material,
+    Texture,
+    Object,
+    Function
+};
 
 const char* type_name(ValueType type);  // "number", "vector3", ...
 

@@ -451,7 +451,8 @@ std::optional<Bounds3f> build_instance(const OtherBuild& b, const ShapeSpec& s, 
         b.error("an instanced object has members without a material, and the instance gives none");
         return std::nullopt;
     }
-    q.inherit_transmissive = s.material < b.spec.materials.size() && b.spec.materials[s.material].transmission > 0;
+    q.inherit_transmissive =
+        s.material < b.spec.materials.size() && b.spec.materials[s.material].transmission > 0;
     q.pad = kRelPad * (Vec3(pm) + abs_mul(x.il, Vec3(wm)));
     const bool any_trans = p.has_transmissive || (p.has_inherit && q.inherit_transmissive);
     const bool any_opaque = p.has_opaque || (p.has_inherit && !q.inherit_transmissive);

@@ -298,8 +298,8 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
 
     bool shapes_ok = true;
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
-        const bool instance_without = spec.shapes[i].kind == ShapeKind::Instance &&
-                                      spec.shapes[i].material == kInheritMaterial;
+        const bool instance_without =
+            spec.shapes[i].kind == ShapeKind::Instance && spec.shapes[i].material == kInheritMaterial;
         if (spec.shapes[i].material >= spec.materials.size() && !instance_without) {
             errors.push_back({SpecItem::Shape, i, spec.shapes[i].tag, "material index out of range", -1});
             shapes_ok = false;

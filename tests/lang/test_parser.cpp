@@ -375,16 +375,16 @@ TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
         "let sphere = 2 let w = 1\n"             // 9
         "if x { } else { } else { }\n"           // 10
         "for i in 0 .. 3 {\n");                  // 11
-    CHECK(p->errors() ==
-          std::vector<std::string>{"1:35: expected a value for 'radius', found '}'",
-                                   "2:1: expected a statement, found 'sphre'",
-                                   "3:5: expected a name after 'let', found '='",
-                                   "5:1: expected '}' to close box block, found 'let'",
-                                   "6:1: expected ')', found 'let'", "7:1: expected an expression, found '}'",
-                                   "8:7: expected the light kind (point, area or spot) after 'light', found '{'",
-                                   "9:5: expected a name after 'let', found keyword 'sphere'",
-                                   "10:19: 'else' without a matching 'if'",
-                                   "12:1: expected '}' to close the for body, found end of file"});
+    CHECK(p->errors() == std::vector<std::string>{
+                             "1:35: expected a value for 'radius', found '}'",
+                             "2:1: expected a statement, found 'sphre'",
+                             "3:5: expected a name after 'let', found '='",
+                             "5:1: expected '}' to close box block, found 'let'",
+                             "6:1: expected ')', found 'let'", "7:1: expected an expression, found '}'",
+                             "8:7: expected the light kind (point, area or spot) after 'light', found '{'",
+                             "9:5: expected a name after 'let', found keyword 'sphere'",
+                             "10:19: 'else' without a matching 'if'",
+                             "12:1: expected '}' to close the for body, found end of file"});
     const auto& d = p->diags.all();
     CHECK(d[1].help == std::vector<std::string>{"did you mean 'sphere'?"});
     REQUIRE(d[3].notes.size() == 1);
