@@ -5,21 +5,24 @@
 # ./setup.sh). The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
 # povray package); otherwise that section says so.
 #
-# Usage: bench/performance.sh [--quick] [-o OUT] [BUILD_DIR]
-#   --quick   small sizes and one run of each, for checking the script (about a minute); the
-#             `wsd bench` output then goes to a temporary directory instead of docs/bench/
-#   -o OUT    the page to write (default docs/performance.md)
+# Usage: bench/performance.sh [--quick] [--baseline WSD] [-o OUT] [BUILD_DIR]
+#   --quick         small sizes and one run of each, for checking the script (about a minute); the
+#                   `wsd bench` output then goes to a temporary directory instead of docs/bench/
+#   --baseline WSD  an older wsd executable: every example is rendered by both, alternating, and
+#                   the page says whether the images are byte-identical and how the times compare
+#   -o OUT          the page to write (default docs/performance.md)
 # A full run takes about 6 CPU-minutes, mostly on one thread: 15 minutes of wall time on a busy
 # 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0; out=docs/performance.md; build=build
+quick=0; out=docs/performance.md; build=build; baseline=
 while (($#)); do
   case $1 in
     --quick) quick=1 ;;
+    --baseline) baseline=$(realpath "${2:?--baseline needs an executable}"); shift ;;
     -o) out=${2:?-o needs a file}; shift ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "performance: unknown option $1" >&2; exit 2 ;;
     *) build=$1 ;;
   esac
@@ -38,9 +41,11 @@ start=$(date +%s)
 if ((quick)); then
   runs=1; cornell=200; adaptive=200; bench_size=32; threads_size=150; pairs=1
   parse_args=(20000); mesh_args=(100 51); bench_dir=$tmp/bench
+  inst_grid=(4 5); inst_sphere=(100 52); inst_size=(256 192)
 else
   runs=3; cornell=1200; adaptive=1200; bench_size=200; threads_size=600; pairs=3
   parse_args=(); mesh_args=(); bench_dir=docs/bench
+  inst_grid=(40 25); inst_sphere=(1000 502); inst_size=(1024 768)
 fi
 
 log() { echo "performance: $*" >&2; }
@@ -232,6 +237,105 @@ csg_table() {
          printf "| %s | %s ns | %s |\n", name, $(k - 1), $(k + 1) }' "$tmp/csg.txt" >>"$page"
 }
 
+# ---------------------------------------------------------------- the new primitives
+primitives_table() {
+  section "Cylinders, cones, tori and discs: cost per ray beside the sphere's"
+  log "bench/primitives.sh $build $runs"
+  bench/primitives.sh "$build" "$runs" >"$tmp/primitives.txt"
+  para "\`bench/primitives.sh $build $runs\`: bench/scenes/{sphere, cylinder, cone, torus, disc}.wsd — the same" \
+       "framing, light and material, a 10×10 grid of one primitive on a plane — rendered on one thread," \
+       "the scenes taken in turn; the median render time of $runs $( ((runs == 1)) && echo run || echo runs), the ray queries" \
+       "(camera and shadow rays) and the time per query relative to the sphere scene's." ""
+  cat "$tmp/primitives.txt" >>"$page"
+}
+
+# ---------------------------------------------------------------- instances
+instances_table() {
+  section "Instances: one mesh stored, a thousand placed"
+  local cols=${inst_grid[0]} rows=${inst_grid[1]} slices=${inst_sphere[0]} stacks=${inst_sphere[1]}
+  local w=${inst_size[0]} h=${inst_size[1]} n=$((inst_grid[0] * inst_grid[1]))
+  local tris=$((2 * slices * (stacks - 2)))
+  log "instances: a $tris-triangle mesh, $n instances, ${w}×${h}"
+  # A UV sphere of 2·slices·(stacks − 2) triangles: quads split in two, one triangle each at the
+  # poles (whose rows of vertices coincide).
+  awk -v S="$slices" -v T="$stacks" 'BEGIN {
+      pi = atan2(0, -1)
+      for (j = 0; j < T; j++) for (i = 0; i < S; i++) {
+        th = pi * j / (T - 1); ph = 2 * pi * i / S
+        printf "v %.6f %.6f %.6f\n", sin(th) * cos(ph), cos(th), sin(th) * sin(ph) }
+      for (j = 0; j < T - 1; j++) for (i = 0; i < S; i++) {
+        a = j * S + i + 1; b = j * S + (i + 1) % S + 1; c = a + S; d = b + S
+        if (j > 0) printf "f %d %d %d\n", a, c, b
+        if (j < T - 2) printf "f %d %d %d\n", b, c, d } }' >"$tmp/ball.obj"
+  local head="settings { width $w  height $h }
+camera { position <$((cols)), 9, -12>  look_at <$((cols)), 0, $((rows))>  fov 60 }
+light point { position <0, 40, -20> }
+let skin = material { color <0.8, 0.5, 0.3>  specular 0.4 }"
+  printf '%s\nmesh { file "ball.obj"  translate <%d, 0, %d>  material skin }\n' "$head" "$cols" "$rows" >"$tmp/one.wsd"
+  printf '%s\nlet ball = mesh { file "ball.obj" }\nfor i in 0 .. %d { for j in 0 .. %d { object ball { translate <2 * i, 0, 2 * j>  material skin } } }\n' \
+    "$head" "$cols" "$rows" >"$tmp/many.wsd"
+  local k
+  for k in one many; do
+    "$wsd" check "$tmp/$k.wsd" >"$tmp/$k.check" 2>/dev/null
+    /usr/bin/time -f '%e %U %S %M' -o "$tmp/$k.time" "$wsd" render "$tmp/$k.wsd" -o "$tmp/$k.png" -q \
+      --stats-json "$tmp/$k.json" >/dev/null 2>&1
+  done
+  json() { python3 -c 'import json, sys
+d = json.load(open(sys.argv[1]))
+def find(d, k):
+    if isinstance(d, dict):
+        if k in d: return d[k]
+        for v in d.values():
+            x = find(v, k)
+            if x is not None: return x
+print(find(d, sys.argv[2]))' "$1" "$2"; }
+  row() {  # row NAME FILE-STEM
+    local t; t=($(cat "$tmp/$2.time"))
+    para "| $1 | $(sed 's/^[^—]*— //' "$tmp/$2.check") | $(fmt "${t[0]}") s | $(fmt "$(awk -v u="${t[1]}" -v s="${t[2]}" 'BEGIN { print u + s }')") s | $(fmt "$(json "$tmp/$2.json" render_seconds)") s | $(awk -v k="${t[3]}" 'BEGIN { printf "%.0f", k / 1024 }') MiB |"
+  }
+  para "A closed mesh of $(commas "$tris") triangles (a UV sphere written as OBJ), rendered once as a" \
+       "\`mesh\` and $n times as \`object\` instances of one \`let\` value in a $cols × $rows grid, each at" \
+       "${w}×${h}, one camera ray a pixel, one point light, on $(nproc) threads: \`wsd check\`'s counts, the" \
+       "whole run's wall and CPU time (loading, BVH builds and rendering) and the render alone, and the" \
+       "peak resident memory (\`/usr/bin/time\`). A flat copy of the instanced scene would hold" \
+       "$(commas $((n * tris))) triangles (about 80 bytes each with their BVH)." \
+       "" "| scene | \`wsd check\` | wall | CPU | render | peak memory |" "|---|---|---:|---:|---:|---:|"
+  row "one mesh" one
+  row "$n instances" many
+}
+
+# ---------------------------------------------------------------- scenes that ask for none of it
+baseline_table() {
+  [[ -n $baseline ]] || return 0
+  section "Scenes without the new features: old and new builds"
+  local f name i same=0 total=0 old new
+  : >"$tmp/base.txt"
+  for f in examples/*.wsd; do
+    name=$(basename "$f" .wsd)
+    # Only scenes the older build can read: the new examples use what it does not have.
+    "$baseline" check "$f" >/dev/null 2>&1 || continue
+    total=$((total + 1))
+    for ((i = 0; i < runs; i++)); do
+      for exe in "$baseline" "$wsd"; do
+        local tag=new; [[ $exe == "$baseline" ]] && tag=old
+        (cd examples && /usr/bin/time -f '%U %S' -o "$tmp/$name.$tag.$i.time" "$exe" render "$name.wsd" \
+          -o "$tmp/$name.$tag.pfm" --width 320 --height 240 --threads 1 -q >/dev/null 2>&1)
+      done
+    done
+    cmp -s "$tmp/$name.old.pfm" "$tmp/$name.new.pfm" && same=$((same + 1))
+    old=$(cat "$tmp/$name".old.*.time | awk '{ print $1 + $2 }' | median)
+    new=$(cat "$tmp/$name".new.*.time | awk '{ print $1 + $2 }' | median)
+    printf '| %s | %s | %s s | %s s | %s |\n' "$name" \
+      "$(cmp -s "$tmp/$name.old.pfm" "$tmp/$name.new.pfm" && echo yes || echo NO)" \
+      "$(fmt "$old")" "$(fmt "$new")" "$(ratio "$new" "$old")" >>"$tmp/base.txt"
+  done
+  para "Every example the older build (\`$baseline\`, $("$baseline" --version 2>/dev/null | head -1 || echo "an older build")) can read, rendered by it and by this build" \
+       "at 320×240 on one thread, the two taken in turn, $runs $( ((runs == 1)) && echo time || echo times) each: whether the float images (\`.pfm\`) are" \
+       "byte-identical ($same of $total are), and the median CPU time of each." \
+       "" "| scene | identical | old CPU | new CPU | new / old |" "|---|:---:|---:|---:|---:|"
+  cat "$tmp/base.txt" >>"$page"
+}
+
 # ---------------------------------------------------------------- parsing and loading
 parse_table() {
   section "Parsing and loading"
@@ -263,7 +367,10 @@ adaptive_table
 bench_table
 threads_table
 mesh_table
+primitives_table
 csg_table
+instances_table
+baseline_table
 parse_table
 load_after=$(loadavg)
 
