@@ -49,7 +49,7 @@ size_of() {  # the scene's own aspect ratio, scaled to $width
 }
 quality_of() {  # camera rays for the gallery picture NAME
   case $1 in
-    glass|bumps|mesh) echo "--supersamples 64" ;;  # checker floors to the horizon
+    glass|bumps|mesh|csg) echo "--supersamples 64" ;;  # checker floors to the horizon
     soft-shadows-2|supersampling|supersampling-1) ;;  # set by the scene or below
     *) echo "--supersamples 16" ;;
   esac
