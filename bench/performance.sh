@@ -16,11 +16,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0; out=docs/performance.md; build=build; baseline=
+quick=0; out=docs/performance.md; build=build; baseline=; baseline_shown=
 while (($#)); do
   case $1 in
     --quick) quick=1 ;;
-    --baseline) baseline=$(realpath "${2:?--baseline needs an executable}"); shift ;;
+    --baseline) baseline_shown=${2:?--baseline needs an executable}; baseline=$(realpath "$2"); shift ;;
     -o) out=${2:?-o needs a file}; shift ;;
     -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "performance: unknown option $1" >&2; exit 2 ;;
@@ -329,7 +329,7 @@ baseline_table() {
       "$(cmp -s "$tmp/$name.old.pfm" "$tmp/$name.new.pfm" && echo yes || echo NO)" \
       "$(fmt "$old")" "$(fmt "$new")" "$(ratio "$new" "$old")" >>"$tmp/base.txt"
   done
-  para "Every example the older build (\`$baseline\`, $("$baseline" --version 2>/dev/null | head -1 || echo "an older build")) can read, rendered by it and by this build" \
+  para "Every example the older build (\`$baseline_shown\`, $("$baseline" --version 2>/dev/null | head -1 || echo "an older build")) can read, rendered by it and by this build" \
        "at 320×240 on one thread, the two taken in turn, $runs $( ((runs == 1)) && echo time || echo times) each: whether the float images (\`.pfm\`) are" \
        "byte-identical ($same of $total are), and the median CPU time of each." \
        "" "| scene | identical | old CPU | new CPU | new / old |" "|---|:---:|---:|---:|---:|"
