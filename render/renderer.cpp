@@ -2,7 +2,8 @@
 // worker thread has its own tracer and RayStats (summed under a lock once per tile). Pixels: 1
 // centre ray, or a jittered grid averaged (box filter), or adaptive supersampling in two phases:
 // centre rays over the region plus a 1-pixel border, then the full grid where a neighbour's
-// display value differs.
+// display value differs. Auxiliary images, when asked for, are traced per sample at the colour's
+// sample positions and averaged the same way (render/aov.h).
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <mutex>
 #include <utility>
 
+#include "render/aov.h"
 #include "render/image_io.h"
 #include "render/integrator.h"
 #include "render/math.h"
@@ -46,6 +48,7 @@ struct Prepass {
     Region rect;
     std::vector<Color> centre;
     std::vector<Vec3> display;
+    std::vector<AovSample> centre_aov;  // when auxiliary images are rendered
     size_t index(int x, int y) const {
         return size_t(y - rect.y0) * size_t(rect.x1 - rect.x0) + size_t(x - rect.x0);
     }
@@ -54,9 +57,12 @@ struct Prepass {
 // Renders tiles into a film (and the prepass) for one worker thread.
 class TileRenderer {
 public:
+    // `aov` and `aov_film` are both null, or both set to render the auxiliary images too.
     TileRenderer(const Scene& scene, Tracer& tracer, RayStats& stats, Film& film, const Region& region,
-                 Prepass& prepass)
+                 Prepass& prepass, AovTracer* aov, AovFilm* aov_film)
         : tracer_(tracer),
+          aov_(aov),
+          aov_film_(aov_film),
           stats_(stats),
           film_(film),
           region_(region),
@@ -69,7 +75,10 @@ public:
     void render(const Region& t) {
         if (samples_ == 1) {
             // One ray a pixel: the pixels' centre rays, a 4×4 block at a time (one packet).
-            for_blocks(t, 0, [&](int x, int y, const Color& c) { store(x, y, guarded(c)); });
+            for_blocks(t, 0, [&](int x, int y, const Color& c) {
+                store(x, y, guarded(c));
+                if (aov_) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+            });
             return;
         }
         for (int y = t.y0; y < t.y1; ++y)
@@ -83,6 +92,7 @@ public:
             prepass_.centre[i] = guarded(colour);
             const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
             prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
+            if (aov_) prepass_.centre_aov[i] = aov_->sample(x + 0.5, y + 0.5);
         });
     }
 
@@ -106,6 +116,7 @@ public:
                     store(x, y, full_pixel(x, y));
                 } else {
                     store(x, y, prepass_.centre[i]);
+                    if (aov_) store_aov(x, y, prepass_.centre_aov[i]);
                 }
             }
         }
@@ -145,11 +156,16 @@ private:
     }
 
     // The box-filtered average of the pixel's camera samples (1 = its centre), traced as
-    // packets of up to Geometry::kMaxPacket and summed in grid order.
+    // packets of up to Geometry::kMaxPacket and summed in grid order; the auxiliary images'
+    // pixel is averaged over the same samples and stored here.
     Color full_pixel(int x, int y) {
         const uint64_t pk = pixel_key(seed_, x, y);
-        if (samples_ == 1) return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
+        if (samples_ == 1) {
+            if (aov_) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+            return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
+        }
         Color sum(0);
+        AovSum aov_sum;
         constexpr int kMax = Geometry::kMaxPacket;
         double px[kMax], py[kMax];
         uint64_t key[kMax];
@@ -158,6 +174,8 @@ private:
         auto flush = [&] {
             tracer_.camera_samples(px, py, key, n, out);
             for (int k = 0; k < n; ++k) sum += guarded(out[k]);
+            if (aov_)
+                for (int k = 0; k < n; ++k) aov_sum.add(aov_->sample(px[k], py[k]));
             n = 0;
         };
         for (int r = 0; r < grid_.rows; ++r) {
@@ -170,6 +188,7 @@ private:
             }
         }
         if (n > 0) flush();
+        if (aov_) store_aov(x, y, aov_sum.mean());
         return sum / double(samples_);
     }
 
@@ -181,7 +200,18 @@ private:
         for (int k = 0; k < 3; ++k) film_.rgb[i + size_t(k)] = ok ? v[k] : 0.0f;
     }
 
+    void store_aov(int x, int y, const AovSample& s) {
+        const size_t i = size_t(y - region_.y0) * size_t(film_.width) + size_t(x - region_.x0);
+        for (int k = 0; k < 3; ++k) {
+            aov_film_->albedo[3 * i + size_t(k)] = float(s.albedo[k]);
+            aov_film_->normal[3 * i + size_t(k)] = float(s.normal[k]);
+        }
+        aov_film_->depth[i] = float(s.depth);
+    }
+
     Tracer& tracer_;
+    AovTracer* aov_;
+    AovFilm* aov_film_;
     RayStats& stats_;
     Film& film_;
     Region region_;
@@ -197,6 +227,7 @@ private:
 struct Worker {
     RayStats stats;
     std::unique_ptr<Tracer> tracer;
+    std::unique_ptr<AovTracer> aov;  // when auxiliary images are rendered
     std::unique_ptr<TileRenderer> tiles;
 };
 
@@ -231,12 +262,13 @@ Region clamped_region(const RenderOptions& options, const Settings& settings) {
 }
 
 // The adaptive prepass's storage over the region plus a 1-pixel border, clipped to the image.
-Prepass make_prepass(const Region& region, const Settings& settings) {
+Prepass make_prepass(const Region& region, const Settings& settings, bool aovs) {
     Prepass p;
     p.rect = {std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0), std::min(region.x1 + 1, settings.width),
               std::min(region.y1 + 1, settings.height)};
     p.centre.resize(area(p.rect));
     p.display.resize(area(p.rect));
+    if (aovs) p.centre_aov.resize(area(p.rect));
     return p;
 }
 
@@ -255,7 +287,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     Film& film = result.film;
     film = {region.x1 - region.x0, region.y1 - region.y0, std::vector<float>(area(region) * 3, 0.0f)};
     const bool adaptive = settings.adaptive_supersampling && settings.supersamples > 1 && area(region) > 0;
-    Prepass prepass = adaptive ? make_prepass(region, settings) : Prepass{};
+    Prepass prepass = adaptive ? make_prepass(region, settings, options.aovs) : Prepass{};
+    if (options.aovs)
+        result.aovs = {std::vector<float>(area(region) * 3, 0.0f), std::vector<float>(area(region) * 3, 0.0f),
+                       std::vector<float>(area(region), 0.0f)};
     const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
 
     std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
@@ -276,8 +311,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             if (!w) {  // kept only once complete, should make_tracer throw
                 auto made = std::make_unique<Worker>();
                 made->tracer = make_tracer(scene, tracer_options, made->stats);
+                if (options.aovs) made->aov = std::make_unique<AovTracer>(scene);
                 made->tiles =
-                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass);
+                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass,
+                                                   made->aov.get(), options.aovs ? &result.aovs : nullptr);
                 w = std::move(made);
             }
             (w->tiles.get()->*tile)(tiles[i]);
