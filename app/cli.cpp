@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/image_files.h"
 #include "lang/diagnostics.h"
 
 namespace wsd::app {
@@ -142,9 +143,15 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
     cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
     cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
-    cmd->add_option(
-        "--aov", args.aov,
-        "auxiliary images, any of albedo,normal,depth: layers of an .exr, else NAME.albedo.pfm …");
+    cmd->add_option("--aov", args.aov,
+                    "auxiliary images, any of albedo,normal,depth: layers of an .exr, else NAME.albedo.pfm …")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                AovSelection selection;
+                std::string error;
+                return parse_aov_list(text, selection, error) ? std::string() : error;
+            },
+            "LIST"));
     return cmd;
 }
 

@@ -222,7 +222,8 @@ int run_render(const RenderArgs& args) {
     if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
     const bool tiled = tile.count > 0 || tile.region.has_value();
     AovSelection aovs;
-    if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error)) return fail(exit_code::usage, error);
+    if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error))
+        return fail(exit_code::usage, "--aov: " + error);
 
     const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
     const render::ImageFormat format = render::format_from_extension(output);

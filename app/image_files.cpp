@@ -104,13 +104,12 @@ bool parse_aov_list(const std::string& text, AovSelection& selection, std::strin
         const size_t comma = std::min(text.find(',', start), text.size());
         const std::string name = text.substr(start, comma - start);
         if (name.empty()) {
-            error =
-                "--aov: expected names from albedo, normal, depth separated by commas, got '" + text + "'";
+            error = "expected names from albedo, normal, depth separated by commas, got '" + text + "'";
             return false;
         }
         if (!select_aov(name, selection)) {
             const std::string match = lang::closest_match(name, aov_names());
-            error = "--aov: unknown auxiliary image '" + name + "'" +
+            error = "unknown auxiliary image '" + name + "'" +
                     (match.empty() ? std::string() : "; did you mean '" + match + "'?") +
                     " (known: albedo, normal, depth)";
             return false;

@@ -19,7 +19,7 @@ struct AovSelection {
 };
 
 // Parses `--aov` text: names from albedo, normal, depth separated by commas (repeats allowed).
-// False + a usage message (with a did-you-mean for a misspelt name).
+// False + what is wrong (with a did-you-mean for a misspelt name), for "--aov: " to precede.
 bool parse_aov_list(const std::string& text, AovSelection& selection, std::string& error);
 
 // Selects the AOV called `name`; false when there is none.

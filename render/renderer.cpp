@@ -54,7 +54,9 @@ struct Prepass {
     }
 };
 
-// Renders tiles into a film (and the prepass) for one worker thread.
+// Renders tiles into a film (and the prepass) for one worker thread; with kAov, the auxiliary
+// images too (a separate instantiation, so that the colour-only one runs exactly its own code).
+template <bool kAov>
 class TileRenderer {
 public:
     // `aov` and `aov_film` are both null, or both set to render the auxiliary images too.
@@ -77,7 +79,7 @@ public:
             // One ray a pixel: the pixels' centre rays, a 4×4 block at a time (one packet).
             for_blocks(t, 0, [&](int x, int y, const Color& c) {
                 store(x, y, guarded(c));
-                if (aov_) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+                if constexpr (kAov) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
             });
             return;
         }
@@ -92,7 +94,7 @@ public:
             prepass_.centre[i] = guarded(colour);
             const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
             prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
-            if (aov_) prepass_.centre_aov[i] = aov_->sample(x + 0.5, y + 0.5);
+            if constexpr (kAov) prepass_.centre_aov[i] = aov_->sample(x + 0.5, y + 0.5);
         });
     }
 
@@ -116,7 +118,7 @@ public:
                     store(x, y, full_pixel(x, y));
                 } else {
                     store(x, y, prepass_.centre[i]);
-                    if (aov_) store_aov(x, y, prepass_.centre_aov[i]);
+                    if constexpr (kAov) store_aov(x, y, prepass_.centre_aov[i]);
                 }
             }
         }
@@ -161,7 +163,7 @@ private:
     Color full_pixel(int x, int y) {
         const uint64_t pk = pixel_key(seed_, x, y);
         if (samples_ == 1) {
-            if (aov_) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+            if constexpr (kAov) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
             return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
         }
         Color sum(0);
@@ -174,7 +176,7 @@ private:
         auto flush = [&] {
             tracer_.camera_samples(px, py, key, n, out);
             for (int k = 0; k < n; ++k) sum += guarded(out[k]);
-            if (aov_)
+            if constexpr (kAov)
                 for (int k = 0; k < n; ++k) aov_sum.add(aov_->sample(px[k], py[k]));
             n = 0;
         };
@@ -188,7 +190,7 @@ private:
             }
         }
         if (n > 0) flush();
-        if (aov_) store_aov(x, y, aov_sum.mean());
+        if constexpr (kAov) store_aov(x, y, aov_sum.mean());
         return sum / double(samples_);
     }
 
@@ -224,11 +226,12 @@ private:
 
 // One render thread's state, made on its first tile: its tracer, its tile renderer and the
 // counters they increment.
+template <bool kAov>
 struct Worker {
     RayStats stats;
     std::unique_ptr<Tracer> tracer;
-    std::unique_ptr<AovTracer> aov;  // when auxiliary images are rendered
-    std::unique_ptr<TileRenderer> tiles;
+    std::unique_ptr<AovTracer> aov;  // with kAov
+    std::unique_ptr<TileRenderer<kAov>> tiles;
 };
 
 // The workers' counters and the work done so far (pixels, prepass pixels included), summed
@@ -272,6 +275,51 @@ Prepass make_prepass(const Region& region, const Settings& settings, bool aovs) 
     return p;
 }
 
+// What render_tiles needs of render()'s setup.
+struct RenderJob {
+    const Scene& scene;
+    const RenderOptions& options;
+    const Region& region;
+    Film& film;
+    AovFilm& aovs;  // sized when kAov
+    Prepass& prepass;
+    bool adaptive;
+    Tally& tally;
+    const ParallelOptions& parallel;
+};
+
+// Renders the region (after the adaptive prepass) with one TileRenderer<kAov> a thread; false
+// when cancelled.
+template <bool kAov>
+bool render_tiles(const RenderJob& job) {
+    std::vector<std::unique_ptr<Worker<kAov>>> workers(size_t(thread_count(job.options.threads)));
+    const TracerOptions tracer_options{job.options.specialise, job.options.adaptive_lights};
+    // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
+    auto run = [&](const Region& rect, void (TileRenderer<kAov>::*tile)(const Region&)) {
+        const std::vector<Region> tiles = make_tiles(rect);
+        return parallel_for(tiles.size(), job.parallel, [&](size_t i, int id) {
+            std::unique_ptr<Worker<kAov>>& w = workers[size_t(id)];
+            if (!w) {  // kept only once complete, should make_tracer throw
+                auto made = std::make_unique<Worker<kAov>>();
+                made->tracer = make_tracer(job.scene, tracer_options, made->stats);
+                if constexpr (kAov) made->aov = std::make_unique<AovTracer>(job.scene);
+                made->tiles = std::make_unique<TileRenderer<kAov>>(
+                    job.scene, *made->tracer, made->stats, job.film, job.region, job.prepass, made->aov.get(),
+                    kAov ? &job.aovs : nullptr);
+                w = std::move(made);
+            }
+            (w->tiles.get()->*tile)(tiles[i]);
+            job.tally.add(w->stats, area(tiles[i]));
+        });
+    };
+    bool complete = true;
+    if (job.adaptive) complete = run(job.prepass.rect, &TileRenderer<kAov>::render_centres);
+    if (complete)
+        complete = run(job.region,
+                       job.adaptive ? &TileRenderer<kAov>::render_adaptive : &TileRenderer<kAov>::render);
+    return complete;
+}
+
 }  // namespace
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
@@ -293,8 +341,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
                        std::vector<float>(area(region), 0.0f)};
     const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
 
-    std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
-    const TracerOptions tracer_options{options.specialise, options.adaptive_lights};
     Tally tally;
     ParallelOptions parallel{options.threads, options.cancel, {}};
     if (options.progress) {
@@ -303,27 +349,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             options.progress(double(work) / total_work, stats);
         };
     }
-    // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
-    auto run = [&](const Region& rect, void (TileRenderer::*tile)(const Region&)) {
-        const std::vector<Region> tiles = make_tiles(rect);
-        return parallel_for(tiles.size(), parallel, [&](size_t i, int id) {
-            std::unique_ptr<Worker>& w = workers[size_t(id)];
-            if (!w) {  // kept only once complete, should make_tracer throw
-                auto made = std::make_unique<Worker>();
-                made->tracer = make_tracer(scene, tracer_options, made->stats);
-                if (options.aovs) made->aov = std::make_unique<AovTracer>(scene);
-                made->tiles =
-                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass,
-                                                   made->aov.get(), options.aovs ? &result.aovs : nullptr);
-                w = std::move(made);
-            }
-            (w->tiles.get()->*tile)(tiles[i]);
-            tally.add(w->stats, area(tiles[i]));
-        });
-    };
-    bool complete = true;
-    if (adaptive) complete = run(prepass.rect, &TileRenderer::render_centres);
-    if (complete) complete = run(region, adaptive ? &TileRenderer::render_adaptive : &TileRenderer::render);
+    const RenderJob job{scene, options, region, film, result.aovs, prepass, adaptive, tally, parallel};
+    const bool complete = options.aovs ? render_tiles<true>(job) : render_tiles<false>(job);
 
     result.stats = tally.snapshot().first;
     result.cancelled = !complete;
