@@ -11,9 +11,11 @@
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <sstream>
 
+#include "app/tile_file.h"
 #include "app_test_util.h"
 
 using namespace wsd::test;
@@ -262,4 +264,47 @@ TEST_CASE("bad --aov lists and unknown output formats are usage errors", "[exr][
     // Repeating a name is harmless.
     CHECK(run_wsd(dir, "render s.wsd -q -o s.png --aov depth,depth").status == 0);
     CHECK(fs::exists(dir / "s.depth.pfm"));
+}
+
+TEST_CASE("tile files carry their AOVs and refuse missing or malformed ones", "[tiles][aov]") {
+    wsd::render::Film film;
+    film.width = 2;
+    film.height = 3;
+    film.rgb.assign(18, 0.5f);
+    wsd::render::AovFilm aovs;
+    for (int i = 0; i < 18; ++i) {
+        aovs.albedo.push_back(0.01f * float(i));
+        aovs.normal.push_back(-0.02f * float(i));
+    }
+    for (int i = 0; i < 6; ++i)
+        aovs.depth.push_back(i == 4 ? std::numeric_limits<float>::infinity() : float(i));
+    wsd::app::TileMeta meta;
+    meta.full_width = 2;
+    meta.full_height = 6;
+    meta.region = {0, 3, 2, 6};
+    meta.scene_hash = meta.settings_hash = "0";
+    meta.aovs.albedo = meta.aovs.depth = true;
+    const std::string bytes = wsd::app::encode_tile(film, aovs, meta);
+    CHECK(bytes.find("\"aovs\":[\"albedo\",\"depth\"]") != std::string::npos);
+
+    wsd::render::Film f;
+    wsd::render::AovFilm a;
+    wsd::app::TileMeta m;
+    std::string error;
+    REQUIRE(wsd::app::decode_tile(bytes, f, a, m, error));
+    CHECK(m.aovs == meta.aovs);
+    CHECK(f.rgb == film.rgb);
+    CHECK(same_bits(a.albedo, aovs.albedo));
+    CHECK(same_bits(a.depth, aovs.depth));
+    CHECK(a.normal == std::vector<float>(18, 0.0f));  // not carried: zero-filled
+
+    CHECK_FALSE(wsd::app::decode_tile(bytes.substr(0, bytes.size() - 8), f, a, m, error));
+    CHECK(error.find("depth") != std::string::npos);
+    const std::string no_aovs = bytes.substr(0, bytes.find('\n', bytes.find("WSDTILE")) + 1);
+    CHECK_FALSE(wsd::app::decode_tile(no_aovs, f, a, m, error));
+    CHECK(error.find("albedo") != std::string::npos);
+    std::string unknown = bytes;
+    unknown.replace(unknown.find("\"depth\"]"), 7, "\"dpeth\"");
+    CHECK_FALSE(wsd::app::decode_tile(unknown, f, a, m, error));
+    CHECK(error.find("'aovs'") != std::string::npos);
 }
