@@ -184,7 +184,7 @@ TEST_CASE("malformed tile files are refused with a reason", "[tiles]") {
     std::string bad_json = good;
     bad_json.replace(bad_json.find("\"region\""), 8, "\"regio\"");
     CHECK_FALSE(decode_tile(bad_json, f, a, m, error));
-    CHECK(error.find("'region'") != std::string::npos);                      // says which field is wrong
+    CHECK(error.find("'region'") != std::string::npos);                         // says which field is wrong
     CHECK_FALSE(decode_tile(good.substr(0, good.size() - 5), f, a, m, error));  // JSON cut short
     CHECK(error.find("malformed WSDTILE metadata") != std::string::npos);
     std::string bad_seed = good;
