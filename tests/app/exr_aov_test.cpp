@@ -7,6 +7,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 
 #include <bit>
 #include <catch2/catch.hpp>
@@ -120,7 +121,7 @@ TEST_CASE("-o scene.exr writes ZIP-compressed float RGB equal to the PFM render"
     CHECK(bad.err.find("bad.exr") != std::string::npos);
 }
 
-TEST_CASE("exrheader reads the EXR file wsd writes", "[exr]") {
+TEST_CASE("the OpenEXR tools read the EXR file wsd writes", "[exr]") {
     if (std::system("command -v exrheader >/dev/null 2>&1") != 0) {
         WARN("exrheader is not installed (Debian package openexr); skipped");
         return;
@@ -137,6 +138,16 @@ TEST_CASE("exrheader reads the EXR file wsd writes", "[exr]") {
     CHECK(header.find("    R, 32-bit floating-point") != std::string::npos);
     CHECK(header.find("zip") != std::string::npos);
     CHECK(header.find("(0 0) - (6 4)") != std::string::npos);
+
+    // The OpenEXR tools' tiled copy of the file reads back as the same image.
+    if (std::system("command -v exrmaketiled >/dev/null 2>&1") != 0) return;
+    REQUIRE(std::system(("exrmaketiled " + shell_quote(dir / "s.exr") + " " + shell_quote(dir / "tiled.exr") +
+                         " >/dev/null")
+                            .c_str()) == 0);
+    REQUIRE(run_wsd(dir, "render s.wsd -q -o s.pfm").status == 0);
+    const RunResult diff = run_wsd(dir, "diff tiled.exr s.pfm");
+    REQUIRE(diff.status == 0);
+    CHECK(field(diff.out, "RMSE") == "0");
 }
 
 TEST_CASE("AOV layers of an .exr: albedo of a red wall, normal towards the camera, analytic depth",
@@ -307,4 +318,30 @@ TEST_CASE("tile files carry their AOVs and refuse missing or malformed ones", "[
     unknown.replace(unknown.find("\"depth\"]"), 7, "\"dpeth\"");
     CHECK_FALSE(wsd::app::decode_tile(unknown, f, a, m, error));
     CHECK(error.find("'aovs'") != std::string::npos);
+}
+
+TEST_CASE("wsd diff reads an EXR whose data window does not start at the origin", "[exr]") {
+    TempDir dir;
+    const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(9, 9)), data(Imath::V2i(2, 3), Imath::V2i(4, 5));
+    Imf::Header header(display, data);
+    std::vector<float> grey(9);
+    for (size_t i = 0; i < 9; ++i) grey[i] = 0.1f * float(i);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    {
+        Imf::OutputFile file((dir / "grey.exr").c_str(), header);
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice::Make(Imf::FLOAT, grey.data(), data, sizeof(float), 3 * sizeof(float)));
+        file.setFrameBuffer(frame);
+        file.writePixels(3);
+    }
+    // The same pixels as a PFM: grey replicated in R, G, B, bottom row first.
+    std::string pfm = "PF\n3 3\n-1.0\n";
+    for (int y = 2; y >= 0; --y)
+        for (int x = 0; x < 3; ++x)
+            for (int c = 0; c < 3; ++c)
+                pfm.append(reinterpret_cast<const char*>(&grey[size_t(y * 3 + x)]), 4);
+    write_file(dir / "grey.pfm", pfm);
+    const RunResult diff = run_wsd(dir, "diff grey.exr grey.pfm");
+    REQUIRE(diff.status == 0);
+    CHECK(field(diff.out, "RMSE") == "0");
 }
