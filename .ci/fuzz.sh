@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${WSD_FUZZ_SECONDS:-60}"
 build="${WSD_FUZZ_BUILD_DIR:-build-fuzz}"
 
-packages=(cmake make clang libclang-rt-14-dev libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev)
+packages=(cmake make clang libclang-rt-14-dev libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev libopenexr-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

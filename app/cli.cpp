@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/image_files.h"
 #include "lang/diagnostics.h"
 
 namespace wsd::app {
@@ -129,7 +130,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     CLI::App* cmd = app.add_subcommand("render", "render an image");
     cmd->add_option("SCENE", args.scene, "scene file; - = stdin")->required();
     cmd->add_option("-o,--output", args.output,
-                    "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm); default ./NAME.png");
+                    "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm .exr); default ./NAME.png");
     refs.add(*cmd);
     add_scene_input(*cmd, args.input);
     cmd->add_option("--threads", args.threads, "render threads; 0 = all cores")->check(integer_in(0, 4096));
@@ -142,6 +143,15 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
     cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
     cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    cmd->add_option("--aov", args.aov,
+                    "auxiliary images, any of albedo,normal,depth: layers of an .exr, else NAME.albedo.pfm …")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                AovSelection selection;
+                std::string error;
+                return parse_aov_list(text, selection, error) ? std::string() : error;
+            },
+            "LIST"));
     return cmd;
 }
 

@@ -7,6 +7,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/image_files.h"
 #include "app/image_metrics.h"
 #include "app/io_util.h"
 #include "render/image_io.h"
@@ -24,7 +25,7 @@ int read_display(const std::string& path, DisplayImage& image) {
     std::string error;
     if (!can_open_for_reading(path, error)) return fail(exit_code::io, error);
     render::Film film;
-    if (!render::read_image(path, film, error))
+    if (!read_image_file(path, film, error))
         return fail(exit_code::input_error, "cannot read image '" + path + "': " + error);
     image = to_display(film, is_8bit(render::format_from_extension(path)));
     return exit_code::ok;
@@ -42,8 +43,8 @@ std::string number(double v) {
 int run_diff(const DiffArgs& args) {
     std::string error;
     if (!args.heatmap.empty()) {
-        if (render::format_from_extension(args.heatmap) == render::ImageFormat::Unknown)
-            return fail(exit_code::usage, "cannot write '" + args.heatmap + "': unknown image format");
+        if (!known_image_format(args.heatmap))
+            return fail(exit_code::usage, unknown_format_message(args.heatmap));
         if (!output_directory_exists(args.heatmap, error)) return fail(exit_code::io, error);
     }
     DisplayImage a, b;
@@ -69,7 +70,7 @@ int run_diff(const DiffArgs& args) {
         film.rgb.resize(heat.rgb.size());
         for (size_t i = 0; i < heat.rgb.size(); ++i)
             film.rgb[i] = static_cast<float>(render::srgb_decode(heat.rgb[i]));
-        if (!render::write_image(args.heatmap, film, error)) return fail(exit_code::io, error);
+        if (!write_image_file(args.heatmap, film, error)) return fail(exit_code::io, error);
         std::cerr << "heat map: " << args.heatmap << " (white = error " << number(scale) << ")\n";
     }
     return exit_code::ok;

@@ -1,6 +1,7 @@
 // `wsd merge TILE... -o OUT`: reads tile files, checks that they come from one scene with one set
 // of settings and one seed and that they cover the image exactly once, then assembles them and
-// writes OUT atomically. Any problem names the tile at fault and nothing is written.
+// writes OUT atomically, with the auxiliary images the tiles carry (as `wsd render` writes them).
+// Any problem names the tile at fault and nothing is written.
 #include <algorithm>
 #include <iostream>
 #include <map>
@@ -8,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/image_files.h"
 #include "app/io_util.h"
 #include "app/tile_file.h"
 #include "render/image_io.h"
@@ -20,7 +22,25 @@ struct Tile {
     std::string path;
     TileMeta meta;
     render::Film film;
+    render::AovFilm aovs;
 };
+
+std::string aov_list(const AovSelection& s) {
+    std::string out;
+    for (const std::string& name : s.names()) out += (out.empty() ? "" : ", ") + name;
+    return out.empty() ? "none" : out;
+}
+
+// Copies the rows of a tile's image (`channels` floats a pixel) into the whole image's.
+void paste(const std::vector<float>& tile, const render::Region& r, int width, size_t channels,
+           std::vector<float>& image) {
+    const size_t row = static_cast<size_t>(r.x1 - r.x0) * channels;
+    for (int y = r.y0; y < r.y1; ++y)
+        std::copy_n(
+            tile.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y - r.y0) * row), row,
+            image.begin() + static_cast<std::ptrdiff_t>(
+                                (static_cast<size_t>(y) * static_cast<size_t>(width) + r.x0) * channels));
+}
 
 std::string describe(const render::Region& r) {
     return "x " + std::to_string(r.x0) + ".." + std::to_string(r.x1 - 1) + ", y " + std::to_string(r.y0) +
@@ -53,6 +73,10 @@ int check_consistency(const std::vector<Tile>& tiles) {
             return fail(
                 exit_code::input_error,
                 "tile '" + t.path + "' was rendered with different settings than '" + first.path + "'");
+        if (!(t.meta.aovs == first.meta.aovs))
+            return fail(exit_code::input_error, "tile '" + t.path + "' carries the auxiliary images " +
+                                                    aov_list(t.meta.aovs) + ", but '" + first.path + "' " +
+                                                    aov_list(first.meta.aovs));
     }
     return exit_code::ok;
 }
@@ -116,10 +140,7 @@ int check_coverage(const std::vector<Tile>& tiles) {
 
 int run_merge(const MergeArgs& args) {
     std::string error;
-    if (render::format_from_extension(args.output) == render::ImageFormat::Unknown)
-        return fail(exit_code::usage,
-                    "cannot write '" + args.output +
-                        "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+    if (!known_image_format(args.output)) return fail(exit_code::usage, unknown_format_message(args.output));
     if (!output_directory_exists(args.output, error)) return fail(exit_code::io, error);
 
     std::vector<Tile> tiles;
@@ -128,7 +149,7 @@ int run_merge(const MergeArgs& args) {
         if (!read_input_file(path, bytes, error)) return fail(exit_code::io, error);
         Tile tile;
         tile.path = path;
-        if (!decode_tile(bytes, tile.film, tile.meta, error))
+        if (!decode_tile(bytes, tile.film, tile.aovs, tile.meta, error))
             return fail(exit_code::input_error, "tile '" + path + "': " + error);
         tiles.push_back(std::move(tile));
     }
@@ -138,17 +159,21 @@ int run_merge(const MergeArgs& args) {
     render::Film image;
     image.width = tiles.front().meta.full_width;
     image.height = tiles.front().meta.full_height;
-    image.rgb.assign(static_cast<size_t>(image.width) * image.height * 3, 0.0f);
+    const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+    image.rgb.assign(pixels * 3, 0.0f);
+    const AovSelection& selection = tiles.front().meta.aovs;
+    render::AovFilm aovs;
+    if (selection.any())
+        aovs = {std::vector<float>(pixels * 3, 0.0f), std::vector<float>(pixels * 3, 0.0f),
+                std::vector<float>(pixels, 0.0f)};
     for (const Tile& t : tiles) {
-        const render::Region& r = t.meta.region;
-        const size_t row = static_cast<size_t>(r.x1 - r.x0) * 3;
-        for (int y = r.y0; y < r.y1; ++y)
-            std::copy_n(t.film.rgb.begin() + static_cast<std::ptrdiff_t>(static_cast<size_t>(y - r.y0) * row),
-                        row,
-                        image.rgb.begin() +
-                            static_cast<std::ptrdiff_t>((static_cast<size_t>(y) * image.width + r.x0) * 3));
+        paste(t.film.rgb, t.meta.region, image.width, 3, image.rgb);
+        if (!selection.any()) continue;
+        paste(t.aovs.albedo, t.meta.region, image.width, 3, aovs.albedo);
+        paste(t.aovs.normal, t.meta.region, image.width, 3, aovs.normal);
+        paste(t.aovs.depth, t.meta.region, image.width, 1, aovs.depth);
     }
-    if (!render::write_image(args.output, image, error)) return fail(exit_code::io, error);
+    if (!write_image_with_aovs(args.output, image, aovs, selection, error)) return fail(exit_code::io, error);
     return exit_code::ok;
 }
 

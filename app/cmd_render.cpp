@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/image_files.h"
 #include "app/io_util.h"
 #include "app/progress.h"
 #include "app/signals.h"
@@ -138,6 +139,19 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
     return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
 }
 
+// Where the auxiliary images went, a line for the user ("" without them).
+std::string aov_note(const std::string& output, const AovSelection& aovs) {
+    if (!aovs.any()) return "";
+    std::string files;
+    for (const std::string& path : output_paths(output, aovs))
+        if (path != output) files += (files.empty() ? "" : ", ") + path;
+    if (files.empty()) {
+        for (const std::string& name : aovs.names()) files += (files.empty() ? "" : ", ") + name;
+        return "auxiliary images: layers " + files + " of " + output + "\n";
+    }
+    return "auxiliary images: " + files + "\n";
+}
+
 // Loads the scene with the command line's defines and overrides: an exit status.
 int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
                     std::optional<lang::LoadedScene>& loaded) {
@@ -207,13 +221,13 @@ int run_render(const RenderArgs& args) {
     if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
     if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
     const bool tiled = tile.count > 0 || tile.region.has_value();
+    AovSelection aovs;
+    if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error))
+        return fail(exit_code::usage, "--aov: " + error);
 
     const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
     const render::ImageFormat format = render::format_from_extension(output);
-    if (format == render::ImageFormat::Unknown)
-        return fail(exit_code::usage,
-                    "cannot write '" + output +
-                        "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+    if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
     if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
     if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
         return fail(exit_code::io, error);
@@ -232,6 +246,7 @@ int run_render(const RenderArgs& args) {
     options.specialise = !args.general;
     options.region = tile.region;
     options.adaptive_lights = args.adaptive_lights;
+    options.aovs = aovs.any();
     options.cancel = signals.flag();
     options.progress = [&](double fraction, const render::RayStats& so_far) {
         progress.update(fraction, so_far);
@@ -254,9 +269,10 @@ int run_render(const RenderArgs& args) {
         meta.tile_index = tile.index;
         meta.tile_count = tile.count;
         meta.scene = display_path(args.scene);
-        if (!write_file_atomic(output, encode_tile(result.film, meta), error))
+        meta.aovs = aovs;
+        if (!write_file_atomic(output, encode_tile(result.film, result.aovs, meta), error))
             return fail(exit_code::io, error);
-    } else if (!render::write_image(output, result.film, error)) {
+    } else if (!write_image_with_aovs(output, result.film, result.aovs, aovs, error)) {
         return fail(exit_code::io, error);
     }
     if (!args.quiet)
@@ -265,6 +281,7 @@ int run_render(const RenderArgs& args) {
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
                   << '\n'
                   << std::flush;
+    if (!args.quiet && !(tiled && format == render::ImageFormat::Pfm)) std::cerr << aov_note(output, aovs);
 
     if (args.stats || !args.stats_json.empty()) return report_stats(args, *loaded, result);
     return exit_code::ok;

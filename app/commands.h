@@ -38,6 +38,7 @@ struct RenderArgs {
     bool adaptive_lights = false;
     std::string tile;    // "I/N"
     std::string region;  // "x0,y0,x1,y1"
+    std::string aov;     // auxiliary images, "albedo,normal,depth" or any of them; empty: none
 };
 int run_render(const RenderArgs& args);
 

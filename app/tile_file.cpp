@@ -2,6 +2,7 @@
 // JSON nlohmann-json writes and reads.
 #include "app/tile_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -69,12 +70,50 @@ bool read_trailer(const Json& fields, TileMeta& meta, std::string& error) {
         meta.tile_count = t[1];
     }
     if (const Json& scene = field(fields, "scene"); scene.is_string()) meta.scene = scene.get<std::string>();
+    meta.aovs = {};
+    if (const Json& aovs = field(fields, "aovs"); !aovs.is_null()) {
+        if (!aovs.is_array()) return missing("'aovs' is not a list of names");
+        for (const Json& name : aovs)
+            if (!name.is_string() || !select_aov(name.get<std::string>(), meta.aovs))
+                return missing("'aovs' names an unknown auxiliary image");
+    }
+    return true;
+}
+
+// The auxiliary images after the trailer line, starting at `at`; false + error.
+bool read_aovs(std::string_view bytes, size_t at, const TileMeta& meta, render::AovFilm& aovs,
+               std::string& error) {
+    const int w = meta.region.x1 - meta.region.x0, h = meta.region.y1 - meta.region.y0;
+    const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
+    aovs = {};
+    for (const std::string& name : meta.aovs.names()) {
+        render::Film image;
+        const size_t used = at < bytes.size() ? render::decode_pfm(bytes.substr(at), image, error) : 0;
+        if (used == 0 || image.width != w || image.height != h) {
+            error = "the " + name + " image after the WSDTILE metadata is missing or malformed" +
+                    (used == 0 && at < bytes.size() ? " (" + error + ")" : std::string());
+            return false;
+        }
+        at += used;
+        if (name == "depth") {
+            aovs.depth.resize(pixels);
+            for (size_t i = 0; i < pixels; ++i) aovs.depth[i] = image.rgb[3 * i];
+        } else {
+            (name == "albedo" ? aovs.albedo : aovs.normal) = std::move(image.rgb);
+        }
+    }
+    // An AovFilm holds all three images or none: those the tile does not carry are zero-filled.
+    if (meta.aovs.any()) {
+        if (aovs.albedo.empty()) aovs.albedo.assign(pixels * 3, 0.0f);
+        if (aovs.normal.empty()) aovs.normal.assign(pixels * 3, 0.0f);
+        if (aovs.depth.empty()) aovs.depth.assign(pixels, 0.0f);
+    }
     return true;
 }
 
 }  // namespace
 
-std::string encode_tile(const render::Film& film, const TileMeta& meta) {
+std::string encode_tile(const render::Film& film, const render::AovFilm& aovs, const TileMeta& meta) {
     const render::Region& r = meta.region;
     Json json = {{"format", 1},
                  {"width", meta.full_width},
@@ -85,16 +124,21 @@ std::string encode_tile(const render::Film& film, const TileMeta& meta) {
                  {"scene_hash", meta.scene_hash},
                  {"settings_hash", meta.settings_hash},
                  {"scene", meta.scene}};
+    if (meta.aovs.any()) json["aovs"] = meta.aovs.names();
     // A scene path that is not UTF-8 is only for messages: its bad bytes become U+FFFD.
     std::string out = render::encode_pfm(film);
     out += "\n";
     out += trailer_tag;
     out += json.dump(-1, ' ', false, Json::error_handler_t::replace);
     out += "\n";
+    if (meta.aovs.albedo) out += render::encode_pfm(film.width, film.height, 3, aovs.albedo.data());
+    if (meta.aovs.normal) out += render::encode_pfm(film.width, film.height, 3, aovs.normal.data());
+    if (meta.aovs.depth) out += render::encode_pfm(film.width, film.height, 1, aovs.depth.data());
     return out;
 }
 
-bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, std::string& error) {
+bool decode_tile(const std::string& bytes, render::Film& film, render::AovFilm& aovs, TileMeta& meta,
+                 std::string& error) {
     if (bytes.rfind("PF", 0) != 0) {
         error = "not a colour PFM file (no 'PF' header)";
         return false;
@@ -106,8 +150,11 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
         error = "no WSDTILE metadata after the PFM data (not a tile written by `wsd render --tile`)";
         return false;
     }
-    const Json fields = Json::parse(bytes.begin() + std::ptrdiff_t(tag + std::strlen(trailer_tag)),
-                                    bytes.end(), nullptr, false);
+    // The trailer is one line (the JSON is written without newlines); auxiliary images follow it.
+    const size_t json_start = tag + std::strlen(trailer_tag);
+    const size_t line_end = std::min(bytes.find('\n', json_start), bytes.size());
+    const Json fields = Json::parse(bytes.begin() + std::ptrdiff_t(json_start),
+                                    bytes.begin() + std::ptrdiff_t(line_end), nullptr, false);
     if (fields.is_discarded()) {
         error = "malformed WSDTILE metadata (not valid JSON)";
         return false;
@@ -119,7 +166,7 @@ bool decode_tile(const std::string& bytes, render::Film& film, TileMeta& meta, s
         error = "WSDTILE region does not match the PFM size or lies outside the image";
         return false;
     }
-    return true;
+    return read_aovs(bytes, line_end + 1, meta, aovs, error);
 }
 
 }  // namespace wsd::app

@@ -100,16 +100,21 @@ double srgb_decode(double encoded) {
 }
 
 std::string encode_pfm(const Film& film) {
-    const size_t w = size_t(film.width), h = size_t(film.height);
-    std::string out = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
+    return encode_pfm(film.width, film.height, 3, film.rgb.data());
+}
+
+std::string encode_pfm(int width, int height, int channels, const float* data) {
+    const size_t w = size_t(width), h = size_t(height), row = w * size_t(channels);
+    std::string out =
+        (channels == 1 ? "Pf\n" : "PF\n") + std::to_string(w) + " " + std::to_string(h) + "\n-1.0\n";
     const size_t header = out.size();
-    out.resize(header + w * h * 12);
+    out.resize(header + row * h * 4);
     for (size_t y = 0; y < h; ++y) {  // PFM stores the bottom row first
-        const float* src = film.rgb.data() + (h - 1 - y) * w * 3;
-        for (size_t i = 0; i < w * 3; ++i) {
+        const float* src = data + (h - 1 - y) * row;
+        for (size_t i = 0; i < row; ++i) {
             uint32_t bits = std::bit_cast<uint32_t>(src[i]);
             if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
-            std::memcpy(out.data() + header + (y * w * 3 + i) * 4, &bits, 4);
+            std::memcpy(out.data() + header + (y * row + i) * 4, &bits, 4);
         }
     }
     return out;

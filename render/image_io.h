@@ -22,6 +22,8 @@ bool write_image(const std::string& path, const Film& film, std::string& error);
 
 // The bytes of a PFM file of `film`: "PF", little-endian floats, bottom row first.
 std::string encode_pfm(const Film& film);
+// The same for `channels` (3: "PF" colour, 1: "Pf" grey) interleaved floats a pixel, top row first.
+std::string encode_pfm(int width, int height, int channels, const float* data);
 
 // Parses the PFM image ("PF" colour or "Pf" grey, either byte order) at the start of `bytes`.
 // Returns the offset just past its pixel data (where anything appended to it starts), or 0 with

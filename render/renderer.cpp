@@ -2,7 +2,8 @@
 // worker thread has its own tracer and RayStats (summed under a lock once per tile). Pixels: 1
 // centre ray, or a jittered grid averaged (box filter), or adaptive supersampling in two phases:
 // centre rays over the region plus a 1-pixel border, then the full grid where a neighbour's
-// display value differs.
+// display value differs. Auxiliary images, when asked for, are traced per sample at the colour's
+// sample positions and averaged the same way (render/aov.h).
 #include "render/renderer.h"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <mutex>
 #include <utility>
 
+#include "render/aov.h"
 #include "render/image_io.h"
 #include "render/integrator.h"
 #include "render/math.h"
@@ -46,17 +48,23 @@ struct Prepass {
     Region rect;
     std::vector<Color> centre;
     std::vector<Vec3> display;
+    std::vector<AovSample> centre_aov;  // when auxiliary images are rendered
     size_t index(int x, int y) const {
         return size_t(y - rect.y0) * size_t(rect.x1 - rect.x0) + size_t(x - rect.x0);
     }
 };
 
-// Renders tiles into a film (and the prepass) for one worker thread.
+// Renders tiles into a film (and the prepass) for one worker thread; with kAov, the auxiliary
+// images too (a separate instantiation, so that the colour-only one runs exactly its own code).
+template <bool kAov>
 class TileRenderer {
 public:
+    // `aov` and `aov_film` are both null, or both set to render the auxiliary images too.
     TileRenderer(const Scene& scene, Tracer& tracer, RayStats& stats, Film& film, const Region& region,
-                 Prepass& prepass)
+                 Prepass& prepass, AovTracer* aov, AovFilm* aov_film)
         : tracer_(tracer),
+          aov_(aov),
+          aov_film_(aov_film),
           stats_(stats),
           film_(film),
           region_(region),
@@ -69,7 +77,10 @@ public:
     void render(const Region& t) {
         if (samples_ == 1) {
             // One ray a pixel: the pixels' centre rays, a 4×4 block at a time (one packet).
-            for_blocks(t, 0, [&](int x, int y, const Color& c) { store(x, y, guarded(c)); });
+            for_blocks(t, 0, [&](int x, int y, const Color& c) {
+                store(x, y, guarded(c));
+                if constexpr (kAov) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+            });
             return;
         }
         for (int y = t.y0; y < t.y1; ++y)
@@ -83,6 +94,7 @@ public:
             prepass_.centre[i] = guarded(colour);
             const Color c = glm::clamp(prepass_.centre[i], 0.0, 1.0);
             prepass_.display[i] = {srgb_encode(c.x), srgb_encode(c.y), srgb_encode(c.z)};
+            if constexpr (kAov) prepass_.centre_aov[i] = aov_->sample(x + 0.5, y + 0.5);
         });
     }
 
@@ -106,6 +118,7 @@ public:
                     store(x, y, full_pixel(x, y));
                 } else {
                     store(x, y, prepass_.centre[i]);
+                    if constexpr (kAov) store_aov(x, y, prepass_.centre_aov[i]);
                 }
             }
         }
@@ -145,11 +158,16 @@ private:
     }
 
     // The box-filtered average of the pixel's camera samples (1 = its centre), traced as
-    // packets of up to Geometry::kMaxPacket and summed in grid order.
+    // packets of up to Geometry::kMaxPacket and summed in grid order; the auxiliary images'
+    // pixel is averaged over the same samples and stored here.
     Color full_pixel(int x, int y) {
         const uint64_t pk = pixel_key(seed_, x, y);
-        if (samples_ == 1) return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
+        if (samples_ == 1) {
+            if constexpr (kAov) store_aov(x, y, aov_->sample(x + 0.5, y + 0.5));
+            return guarded(tracer_.camera_sample(x + 0.5, y + 0.5, sample_key(pk, 0)));
+        }
         Color sum(0);
+        AovSum aov_sum;
         constexpr int kMax = Geometry::kMaxPacket;
         double px[kMax], py[kMax];
         uint64_t key[kMax];
@@ -158,6 +176,8 @@ private:
         auto flush = [&] {
             tracer_.camera_samples(px, py, key, n, out);
             for (int k = 0; k < n; ++k) sum += guarded(out[k]);
+            if constexpr (kAov)
+                for (int k = 0; k < n; ++k) aov_sum.add(aov_->sample(px[k], py[k]));
             n = 0;
         };
         for (int r = 0; r < grid_.rows; ++r) {
@@ -170,6 +190,7 @@ private:
             }
         }
         if (n > 0) flush();
+        if constexpr (kAov) store_aov(x, y, aov_sum.mean());
         return sum / double(samples_);
     }
 
@@ -181,7 +202,18 @@ private:
         for (int k = 0; k < 3; ++k) film_.rgb[i + size_t(k)] = ok ? v[k] : 0.0f;
     }
 
+    void store_aov(int x, int y, const AovSample& s) {
+        const size_t i = size_t(y - region_.y0) * size_t(film_.width) + size_t(x - region_.x0);
+        for (int k = 0; k < 3; ++k) {
+            aov_film_->albedo[3 * i + size_t(k)] = float(s.albedo[k]);
+            aov_film_->normal[3 * i + size_t(k)] = float(s.normal[k]);
+        }
+        aov_film_->depth[i] = float(s.depth);
+    }
+
     Tracer& tracer_;
+    AovTracer* aov_;
+    AovFilm* aov_film_;
     RayStats& stats_;
     Film& film_;
     Region region_;
@@ -194,10 +226,12 @@ private:
 
 // One render thread's state, made on its first tile: its tracer, its tile renderer and the
 // counters they increment.
+template <bool kAov>
 struct Worker {
     RayStats stats;
     std::unique_ptr<Tracer> tracer;
-    std::unique_ptr<TileRenderer> tiles;
+    std::unique_ptr<AovTracer> aov;  // with kAov
+    std::unique_ptr<TileRenderer<kAov>> tiles;
 };
 
 // The workers' counters and the work done so far (pixels, prepass pixels included), summed
@@ -231,13 +265,59 @@ Region clamped_region(const RenderOptions& options, const Settings& settings) {
 }
 
 // The adaptive prepass's storage over the region plus a 1-pixel border, clipped to the image.
-Prepass make_prepass(const Region& region, const Settings& settings) {
+Prepass make_prepass(const Region& region, const Settings& settings, bool aovs) {
     Prepass p;
     p.rect = {std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0), std::min(region.x1 + 1, settings.width),
               std::min(region.y1 + 1, settings.height)};
     p.centre.resize(area(p.rect));
     p.display.resize(area(p.rect));
+    if (aovs) p.centre_aov.resize(area(p.rect));
     return p;
+}
+
+// What render_tiles needs of render()'s setup.
+struct RenderJob {
+    const Scene& scene;
+    const RenderOptions& options;
+    const Region& region;
+    Film& film;
+    AovFilm& aovs;  // sized when kAov
+    Prepass& prepass;
+    bool adaptive;
+    Tally& tally;
+    const ParallelOptions& parallel;
+};
+
+// Renders the region (after the adaptive prepass) with one TileRenderer<kAov> a thread; false
+// when cancelled.
+template <bool kAov>
+bool render_tiles(const RenderJob& job) {
+    std::vector<std::unique_ptr<Worker<kAov>>> workers(size_t(thread_count(job.options.threads)));
+    const TracerOptions tracer_options{job.options.specialise, job.options.adaptive_lights};
+    // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
+    auto run = [&](const Region& rect, void (TileRenderer<kAov>::*tile)(const Region&)) {
+        const std::vector<Region> tiles = make_tiles(rect);
+        return parallel_for(tiles.size(), job.parallel, [&](size_t i, int id) {
+            std::unique_ptr<Worker<kAov>>& w = workers[size_t(id)];
+            if (!w) {  // kept only once complete, should make_tracer throw
+                auto made = std::make_unique<Worker<kAov>>();
+                made->tracer = make_tracer(job.scene, tracer_options, made->stats);
+                if constexpr (kAov) made->aov = std::make_unique<AovTracer>(job.scene);
+                made->tiles = std::make_unique<TileRenderer<kAov>>(
+                    job.scene, *made->tracer, made->stats, job.film, job.region, job.prepass, made->aov.get(),
+                    kAov ? &job.aovs : nullptr);
+                w = std::move(made);
+            }
+            (w->tiles.get()->*tile)(tiles[i]);
+            job.tally.add(w->stats, area(tiles[i]));
+        });
+    };
+    bool complete = true;
+    if (job.adaptive) complete = run(job.prepass.rect, &TileRenderer<kAov>::render_centres);
+    if (complete)
+        complete = run(job.region,
+                       job.adaptive ? &TileRenderer<kAov>::render_adaptive : &TileRenderer<kAov>::render);
+    return complete;
 }
 
 }  // namespace
@@ -255,11 +335,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     Film& film = result.film;
     film = {region.x1 - region.x0, region.y1 - region.y0, std::vector<float>(area(region) * 3, 0.0f)};
     const bool adaptive = settings.adaptive_supersampling && settings.supersamples > 1 && area(region) > 0;
-    Prepass prepass = adaptive ? make_prepass(region, settings) : Prepass{};
+    Prepass prepass = adaptive ? make_prepass(region, settings, options.aovs) : Prepass{};
+    if (options.aovs)
+        result.aovs = {std::vector<float>(area(region) * 3, 0.0f), std::vector<float>(area(region) * 3, 0.0f),
+                       std::vector<float>(area(region), 0.0f)};
     const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
 
-    std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
-    const TracerOptions tracer_options{options.specialise, options.adaptive_lights};
     Tally tally;
     ParallelOptions parallel{options.threads, options.cancel, {}};
     if (options.progress) {
@@ -268,25 +349,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             options.progress(double(work) / total_work, stats);
         };
     }
-    // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
-    auto run = [&](const Region& rect, void (TileRenderer::*tile)(const Region&)) {
-        const std::vector<Region> tiles = make_tiles(rect);
-        return parallel_for(tiles.size(), parallel, [&](size_t i, int id) {
-            std::unique_ptr<Worker>& w = workers[size_t(id)];
-            if (!w) {  // kept only once complete, should make_tracer throw
-                auto made = std::make_unique<Worker>();
-                made->tracer = make_tracer(scene, tracer_options, made->stats);
-                made->tiles =
-                    std::make_unique<TileRenderer>(scene, *made->tracer, made->stats, film, region, prepass);
-                w = std::move(made);
-            }
-            (w->tiles.get()->*tile)(tiles[i]);
-            tally.add(w->stats, area(tiles[i]));
-        });
-    };
-    bool complete = true;
-    if (adaptive) complete = run(prepass.rect, &TileRenderer::render_centres);
-    if (complete) complete = run(region, adaptive ? &TileRenderer::render_adaptive : &TileRenderer::render);
+    const RenderJob job{scene, options, region, film, result.aovs, prepass, adaptive, tally, parallel};
+    const bool complete = options.aovs ? render_tiles<true>(job) : render_tiles<false>(job);
 
     result.stats = tally.snapshot().first;
     result.cancelled = !complete;

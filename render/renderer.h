@@ -19,6 +19,15 @@ struct Film {
     std::vector<float> rgb;     // linear RGB, row-major from the top row
 };
 
+// The auxiliary images (render/aov.h) of a film, same size and order: all three, or (unless
+// requested) none.
+struct AovFilm {
+    std::vector<float> albedo;  // RGB
+    std::vector<float> normal;  // XYZ
+    std::vector<float> depth;   // one value a pixel; +∞ where no sample hit
+    bool empty() const { return albedo.empty(); }
+};
+
 // Half-open pixel rectangle [x0, x1) × [y0, y1) of the full image.
 struct Region {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -30,12 +39,14 @@ struct RenderOptions {
     std::optional<Region> region;  // unset: the whole image
     bool adaptive_lights = false;  // force adaptive sampling on every area light
     bool specialise = true;        // false: the unspecialised reference path (tests)
+    bool aovs = false;             // also compute the auxiliary images (RenderResult::aovs)
     std::function<void(double fraction, const RayStats& so_far)> progress;  // may be empty
     const std::atomic<bool>* cancel = nullptr;  // set to stop early (render returns false)
 };
 
 struct RenderResult {
     Film film;
+    AovFilm aovs;  // filled when RenderOptions::aovs
     RayStats stats;
     double build_seconds = 0;
     double render_seconds = 0;

@@ -117,7 +117,7 @@ TEST_CASE("a tile file round-trips its pixels and metadata", "[tiles]") {
     meta.tile_index = 2;
     meta.tile_count = 3;
     meta.scene = "dir/a \"quoted\" scene.wsd";
-    const std::string bytes = encode_tile(film, meta);
+    const std::string bytes = encode_tile(film, {}, meta);
     REQUIRE(bytes.rfind("PF\n3 2\n-1.0\n", 0) == 0);
     // The pixels are the PFM file `wsd render -o x.pfm` writes, and the trailer keeps its keys.
     CHECK(bytes.rfind(wsd::render::encode_pfm(film), 0) == 0);
@@ -127,9 +127,10 @@ TEST_CASE("a tile file round-trips its pixels and metadata", "[tiles]") {
           "\"scene\":\"dir/a \\\"quoted\\\" scene.wsd\"}\n");
 
     wsd::render::Film back;
+    wsd::render::AovFilm aovs_back;
     TileMeta meta_back;
     std::string error;
-    REQUIRE(decode_tile(bytes, back, meta_back, error));
+    REQUIRE(decode_tile(bytes, back, aovs_back, meta_back, error));
     CHECK(back.width == 3);
     CHECK(back.height == 2);
     CHECK(back.rgb == film.rgb);
@@ -152,9 +153,10 @@ TEST_CASE("a scene path that is not UTF-8 still gives a readable tile", "[tiles]
     meta.region = {0, 0, 1, 1};
     meta.scene = "caf\xe9.wsd";  // Latin-1
     wsd::render::Film back;
+    wsd::render::AovFilm aovs_back;
     TileMeta meta_back;
     std::string error;
-    REQUIRE(decode_tile(encode_tile(film, meta), back, meta_back, error));
+    REQUIRE(decode_tile(encode_tile(film, {}, meta), back, aovs_back, meta_back, error));
     CHECK(meta_back.scene == "caf\xEF\xBF\xBD.wsd");  // the bad byte becomes U+FFFD
 }
 
@@ -168,32 +170,33 @@ TEST_CASE("malformed tile files are refused with a reason", "[tiles]") {
     meta.full_height = 4;
     meta.region = {0, 0, 2, 2};
     meta.scene_hash = meta.settings_hash = "0";
-    const std::string good = encode_tile(film, meta);
+    const std::string good = encode_tile(film, {}, meta);
     wsd::render::Film f;
+    wsd::render::AovFilm a;
     TileMeta m;
     std::string error;
-    CHECK_FALSE(decode_tile("", f, m, error));
-    CHECK_FALSE(decode_tile("P6\n2 2\n255\n", f, m, error));
-    CHECK_FALSE(decode_tile(good.substr(0, 20), f, m, error));  // truncated floats
+    CHECK_FALSE(decode_tile("", f, a, m, error));
+    CHECK_FALSE(decode_tile("P6\n2 2\n255\n", f, a, m, error));
+    CHECK_FALSE(decode_tile(good.substr(0, 20), f, a, m, error));  // truncated floats
     CHECK(error.find("truncated") != std::string::npos);
-    CHECK_FALSE(decode_tile(good.substr(0, good.find("\nWSDTILE")), f, m, error));  // a plain PFM
+    CHECK_FALSE(decode_tile(good.substr(0, good.find("\nWSDTILE")), f, a, m, error));  // a plain PFM
     CHECK(error.find("WSDTILE") != std::string::npos);
     std::string bad_json = good;
     bad_json.replace(bad_json.find("\"region\""), 8, "\"regio\"");
-    CHECK_FALSE(decode_tile(bad_json, f, m, error));
-    CHECK(error.find("'region'") != std::string::npos);                      // says which field is wrong
-    CHECK_FALSE(decode_tile(good.substr(0, good.size() - 5), f, m, error));  // JSON cut short
+    CHECK_FALSE(decode_tile(bad_json, f, a, m, error));
+    CHECK(error.find("'region'") != std::string::npos);                         // says which field is wrong
+    CHECK_FALSE(decode_tile(good.substr(0, good.size() - 5), f, a, m, error));  // JSON cut short
     CHECK(error.find("malformed WSDTILE metadata") != std::string::npos);
     std::string bad_seed = good;
     bad_seed.replace(bad_seed.find("\"seed\":0"), 8, "\"seed\":-1");
-    CHECK_FALSE(decode_tile(bad_seed, f, m, error));
+    CHECK_FALSE(decode_tile(bad_seed, f, a, m, error));
     CHECK(error.find("'seed'") != std::string::npos);
     TileMeta outside = meta;
     outside.region = {0, 3, 2, 5};  // beyond the 4 rows of the image
-    CHECK_FALSE(decode_tile(encode_tile(film, outside), f, m, error));
+    CHECK_FALSE(decode_tile(encode_tile(film, {}, outside), f, a, m, error));
     TileMeta wrong_size = meta;
     wrong_size.region = {0, 0, 2, 3};  // 3 rows claimed, 2 stored
-    CHECK_FALSE(decode_tile(encode_tile(film, wrong_size), f, m, error));
+    CHECK_FALSE(decode_tile(encode_tile(film, {}, wrong_size), f, a, m, error));
 }
 
 TEST_CASE("the Pareto front keeps exactly the undominated points", "[svg]") {
