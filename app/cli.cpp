@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/frames.h"
 #include "lang/diagnostics.h"
 
 namespace wsd::app {
@@ -142,6 +143,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
     cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
     cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    cmd->add_option("--frames", args.frames,
+                    "A-B: render frames A to B, clock going from 0 to 1; '#'s in -o become the frame number");
+    cmd->add_option("--frame", args.frame, "N: render only frame N of --frames (a farm's task)")
+        ->check(integer_in(0, max_frame_number));
+    cmd->add_option("--clock", args.clock, "X: the value of clock in a still (default 0)");
     return cmd;
 }
 

@@ -9,6 +9,7 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/frames.h"
 #include "app/io_util.h"
 #include "app/progress.h"
 #include "app/signals.h"
@@ -77,8 +78,9 @@ bool parse_region(const std::string& text, TileRequest& tile, std::string& error
     return true;
 }
 
-std::string default_output(const RenderArgs& args, const TileRequest& tile) {
-    const std::string stem = scene_stem(args.scene);
+// NAME.png, NAME.tile-I-of-N.pfm or NAME.region-….pfm; NAME-####… for the frames of --frames.
+std::string default_output(const RenderArgs& args, const TileRequest& tile, bool animated) {
+    const std::string stem = scene_stem(args.scene) + (animated ? "-####" : "");
     if (tile.count > 0)
         return stem + ".tile-" + std::to_string(tile.index) + "-of-" + std::to_string(tile.count) + ".pfm";
     if (tile.region) {
@@ -138,13 +140,14 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
     return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
 }
 
-// Loads the scene with the command line's defines and overrides: an exit status.
-int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
+// Loads the scene at `time` with the command line's defines and overrides: an exit status.
+int load_for_render(const RenderArgs& args, const lang::AnimationTime& time, lang::SourceManager& sources,
                     std::optional<lang::LoadedScene>& loaded) {
     lang::ParamTable params;
-    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
+    if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
     load_options.params = &params;
+    load_options.time = time;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) {
@@ -170,8 +173,15 @@ int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
     return exit_code::ok;
 }
 
+// Where a frame goes: -o or the default name, with the frame number in its '#' runs (a still's
+// '#' is literal).
+std::string frame_output(const RenderArgs& args, const TileRequest& tile, const FrameJob& job) {
+    const std::string pattern = args.output.empty() ? default_output(args, tile, job.animated) : args.output;
+    return job.animated ? frame_path(pattern, job.time.frame) : pattern;
+}
+
 // --stats (a table on stdout) and --stats-json FILE: an exit status.
-int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
+int report_stats(const RenderArgs& args, const std::string& stats_json, const lang::LoadedScene& loaded,
                  const render::RenderResult& result) {
     const render::Settings& settings = loaded.spec.settings;
     std::string error;
@@ -191,41 +201,30 @@ int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
     report.peak_memory_bytes = peak_memory_bytes();
     report.effects = result.effects;
     if (args.stats) std::cout << stats_table(report) << std::flush;
-    if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
+    if (!stats_json.empty() && !write_file_atomic(stats_json, app::stats_json(report), error))
         return fail(exit_code::io, error);
     return exit_code::ok;
 }
 
-}  // namespace
-
-int run_render(const RenderArgs& args) {
+// Renders one frame (or the still): loads the scene at the frame's time, renders the whole image
+// or the tile, and writes it and its statistics. An exit status.
+int render_frame(const RenderArgs& args, TileRequest tile, const FrameJob& job) {
     const auto start = std::chrono::steady_clock::now();
-    TileRequest tile;
-    std::string error;
-    if (!args.tile.empty() && !args.region.empty())
-        return fail(exit_code::usage, "--tile and --region cannot be used together");
-    if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
-    if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
-    const bool tiled = tile.count > 0 || tile.region.has_value();
-
-    const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
+    const std::string output = frame_output(args, tile, job);
     const render::ImageFormat format = render::format_from_extension(output);
-    if (format == render::ImageFormat::Unknown)
-        return fail(exit_code::usage,
-                    "cannot write '" + output +
-                        "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
-    if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
-    if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
-        return fail(exit_code::io, error);
+    const std::string stats_path =
+        job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
+    std::string error;
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, sources, loaded); status != exit_code::ok) return status;
+    if (const int status = load_for_render(args, job.time, sources, loaded); status != exit_code::ok)
+        return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
     CancelOnSignal signals;
-    ProgressReporter progress(progress_mode(args.quiet), "render");
+    ProgressReporter progress(progress_mode(args.quiet), job.progress_label(), job.run_start);
     render::RenderOptions options;
     options.threads = args.threads;
     options.use_bvh = !args.no_bvh;
@@ -234,16 +233,18 @@ int run_render(const RenderArgs& args) {
     options.adaptive_lights = args.adaptive_lights;
     options.cancel = signals.flag();
     options.progress = [&](double fraction, const render::RayStats& so_far) {
-        progress.update(fraction, so_far);
+        progress.update(job.run_fraction(fraction), so_far);
     };
     const render::RenderResult result = render::render(*loaded->scene, options);
-    progress.finish(!result.cancelled && !signals.cancelled());
-    if (result.cancelled || signals.cancelled()) {
+    const bool completed = !result.cancelled && !signals.cancelled();
+    if (completed) progress.update(job.run_fraction(1.0), result.stats);
+    progress.finish(completed && job.index + 1 == job.count);
+    if (!completed) {
         std::cerr << "wsd: interrupted; no image written\n";
         return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
     }
 
-    if (tiled && format == render::ImageFormat::Pfm) {
+    if ((tile.count > 0 || tile.region.has_value()) && format == render::ImageFormat::Pfm) {
         TileMeta meta;
         meta.full_width = settings.width;
         meta.full_height = settings.height;
@@ -254,6 +255,8 @@ int run_render(const RenderArgs& args) {
         meta.tile_index = tile.index;
         meta.tile_count = tile.count;
         meta.scene = display_path(args.scene);
+        meta.frame = job.animated ? job.time.frame : -1;
+        meta.clock = job.time.clock;
         if (!write_file_atomic(output, encode_tile(result.film, meta), error))
             return fail(exit_code::io, error);
     } else if (!render::write_image(output, result.film, error)) {
@@ -266,8 +269,38 @@ int run_render(const RenderArgs& args) {
                   << '\n'
                   << std::flush;
 
-    if (args.stats || !args.stats_json.empty()) return report_stats(args, *loaded, result);
+    if (args.stats || !stats_path.empty()) return report_stats(args, stats_path, *loaded, result);
     return exit_code::ok;
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+    TileRequest tile;
+    std::string error;
+    if (!args.tile.empty() && !args.region.empty())
+        return fail(exit_code::usage, "--tile and --region cannot be used together");
+    if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
+    if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
+    FramePlan plan;
+    if (const int status = plan_frames(args, plan); status != exit_code::ok) return status;
+
+    // Every frame's outputs are checked before the first frame renders.
+    FrameJob job;
+    job.animated = plan.animated;
+    for (const long long frame : plan.frames) {
+        job.time = plan.time_of(frame);
+        const std::string output = frame_output(args, tile, job);
+        if (render::format_from_extension(output) == render::ImageFormat::Unknown)
+            return fail(exit_code::usage,
+                        "cannot write '" + output +
+                            "': unknown image format (use .png, .jpg, .jpeg, .bmp, .tga, .hdr or .pfm)");
+        if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
+        const std::string stats_path = plan.animated ? frame_path(args.stats_json, frame) : args.stats_json;
+        if (!stats_path.empty() && !output_directory_exists(stats_path, error))
+            return fail(exit_code::io, error);
+    }
+    return run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, tile, frame); });
 }
 
 }  // namespace wsd::app

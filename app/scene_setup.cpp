@@ -30,14 +30,15 @@ std::string display_path(const std::string& path) {
     return path == "-" ? "<stdin>" : path;
 }
 
-int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params) {
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params,
+                     const lang::AnimationTime& time) {
     for (const std::string& define : defines) {
         const size_t eq = define.find('=');
         if (eq == std::string::npos || eq == 0)
             return fail(exit_code::usage, "--define '" + define + "': expected NAME=EXPR");
         const std::string name = define.substr(0, eq);
         std::string error;
-        std::optional<lang::Value> value = lang::evaluate_define(define.substr(eq + 1), error);
+        std::optional<lang::Value> value = lang::evaluate_define(define.substr(eq + 1), error, time);
         if (!value) return fail(exit_code::usage, "--define " + name + ": " + error);
         params.set(name, std::move(*value));
     }

@@ -40,7 +40,9 @@ struct SceneInputArgs {
 
 // The values of the --define options, evaluated once per command (lang::evaluate_define).
 // Returns an exit status: 0, or 2 (usage) with a message naming the bad define.
-int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params);
+// `time`: the `clock` and `frame` the expressions see (a still's by default).
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params,
+                     const lang::AnimationTime& time = {});
 
 // After a successful load: a warning for each --define that no param() call read.
 void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input);
