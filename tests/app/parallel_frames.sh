@@ -32,7 +32,8 @@ for k in 1 2 3 4; do cmp "whole/frame-000$k.png" "frames/frame-000$k.png"; done
 parallel --will-cite -j 2 --halt now,fail=1 \
   "$wsd" render scene.wsd "${opts[@]}" --frames 1-4 --frame {1} --tile {2}/2 ::: 1 2 3 4 ::: 1 2
 [[ $(ls scene-*.tile-*.pfm | wc -l) == 8 ]]
+mkdir out
 parallel --will-cite -j 2 --halt now,fail=1 \
-  "$wsd" merge 'scene-{=$_=sprintf("%04d",$_)=}.tile-*.pfm' -o 'merged-{}.png' ::: 1 2 3 4
-for k in 1 2 3 4; do cmp "whole/frame-000$k.png" "merged-$k.png"; done
+  "$wsd" merge 'scene-{=$_=sprintf("%04d",$_)=}.tile-*.pfm' -o 'out/frame-{=$_=sprintf("%04d",$_)=}.png' ::: 1 2 3 4
+for k in 1 2 3 4; do cmp "whole/frame-000$k.png" "out/frame-000$k.png"; done
 echo "parallel frames: every frame equals the single render"
