@@ -141,8 +141,8 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
 }
 
 // Loads the scene at `time` with the command line's defines and overrides: an exit status.
-int load_for_render(const RenderArgs& args, const lang::AnimationTime& time, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& loaded) {
+int load_for_render(const RenderArgs& args, const std::string& text, const lang::AnimationTime& time,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& loaded) {
     lang::ParamTable params;
     if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
@@ -161,7 +161,7 @@ int load_for_render(const RenderArgs& args, const lang::AnimationTime& time, lan
     };
     try {
         if (const int status =
-                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
+                load_scene_text(args.scene, text, load_options, sources, loaded, !args.input.no_warnings);
             status != exit_code::ok)
             return status;
     } catch (const OversizedImage& size) {
@@ -206,9 +206,15 @@ int report_stats(const RenderArgs& args, const std::string& stats_json, const la
     return exit_code::ok;
 }
 
-// Renders one frame (or the still): loads the scene at the frame's time, renders the whole image
-// or the tile, and writes it and its statistics. An exit status.
-int render_frame(const RenderArgs& args, TileRequest tile, const FrameJob& job) {
+// Renders one frame (or the still): evaluates the scene's text (read once: stdin cannot be read
+// again) at the frame's time, renders the whole image or the tile, and writes it and its
+// statistics. `signals` spans the whole run, so an interruption between frames stops it too.
+int render_frame(const RenderArgs& args, const std::string& text, TileRequest tile, const FrameJob& job,
+                 const CancelOnSignal& signals) {
+    if (signals.cancelled()) {
+        std::cerr << "wsd: interrupted\n";
+        return signals.exit_status();
+    }
     const auto start = std::chrono::steady_clock::now();
     const std::string output = frame_output(args, tile, job);
     const render::ImageFormat format = render::format_from_extension(output);
@@ -218,12 +224,11 @@ int render_frame(const RenderArgs& args, TileRequest tile, const FrameJob& job) 
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, job.time, sources, loaded); status != exit_code::ok)
+    if (const int status = load_for_render(args, text, job.time, sources, loaded); status != exit_code::ok)
         return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
-    CancelOnSignal signals;
     ProgressReporter progress(progress_mode(args.quiet), job.progress_label(), job.run_start);
     render::RenderOptions options;
     options.threads = args.threads;
@@ -300,7 +305,11 @@ int run_render(const RenderArgs& args) {
         if (!stats_path.empty() && !output_directory_exists(stats_path, error))
             return fail(exit_code::io, error);
     }
-    return run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, tile, frame); });
+    std::string text;
+    if (!read_input_file(args.scene, text, error)) return fail(exit_code::io, error);
+    CancelOnSignal signals;
+    return run_frames(plan,
+                      [&](const FrameJob& frame) { return render_frame(args, text, tile, frame, signals); });
 }
 
 }  // namespace wsd::app

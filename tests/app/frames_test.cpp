@@ -82,6 +82,17 @@ TEST_CASE("'#' runs in -o become the zero-padded frame number; a still's '#' is 
                                                         "still-##.pfm", "two-008-8.pfm"});
 }
 
+TEST_CASE("frames of a scene read from stdin: the text is read once", "[frames]") {
+    TempDir dir;
+    write_file(dir / "c.wsd", clock_scene);
+    const int raw =
+        std::system(("cd " + shell_quote(dir.path().string()) + " && cat c.wsd | " + shell_quote(WSD_BINARY) +
+                     " render - --frames 0-2 -o in-#.pfm --quiet 2>err.txt")
+                        .c_str());
+    CHECK(WEXITSTATUS(raw) == 0);
+    CHECK(first_pixel(dir / "in-2.pfm")[0] == 1.0f);
+}
+
 TEST_CASE("frames are named NAME-####.png, and their tiles NAME-####.tile-I-of-N.pfm", "[frames][names]") {
     TempDir dir;
     write_file(dir / "c.wsd", clock_scene);
