@@ -51,7 +51,7 @@ ProgressReporter::ProgressReporter(ProgressMode mode, std::string label,
       label_(std::move(label)),
       start_(run_start),
       rate_start_(std::chrono::steady_clock::now()),
-      last_print_(rate_start_) {}
+      last_print_(run_start) {}  // a run of short frames still prints a line every few seconds
 
 void ProgressReporter::update(double fraction, const render::RayStats& so_far) {
     if (mode_ == ProgressMode::None) return;
