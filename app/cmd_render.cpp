@@ -206,6 +206,25 @@ int report_stats(const RenderArgs& args, const std::string& stats_json, const la
     return exit_code::ok;
 }
 
+// What a tile file records of the render that made it (tile_file.h).
+TileMeta tile_meta(const RenderArgs& args, const TileRequest& tile, const FrameJob& job,
+                   const lang::LoadedScene& loaded, const lang::SourceManager& sources) {
+    const render::Settings& settings = loaded.spec.settings;
+    TileMeta meta;
+    meta.full_width = settings.width;
+    meta.full_height = settings.height;
+    meta.region = *tile.region;
+    meta.scene_hash = hex64(scene_text_hash(sources));
+    meta.settings_hash = hex64(fnv1a64(settings_fingerprint(loaded.spec, args.adaptive_lights)));
+    meta.seed = settings.seed;
+    meta.tile_index = tile.index;
+    meta.tile_count = tile.count;
+    meta.scene = display_path(args.scene);
+    meta.frame = job.animated ? job.time.frame : -1;
+    meta.clock = job.time.clock;
+    return meta;
+}
+
 // Renders one frame (or the still): evaluates the scene's text (read once: stdin cannot be read
 // again) at the frame's time, renders the whole image or the tile, and writes it and its
 // statistics. `signals` spans the whole run, so an interruption between frames stops it too.
@@ -250,18 +269,7 @@ int render_frame(const RenderArgs& args, const std::string& text, TileRequest ti
     }
 
     if ((tile.count > 0 || tile.region.has_value()) && format == render::ImageFormat::Pfm) {
-        TileMeta meta;
-        meta.full_width = settings.width;
-        meta.full_height = settings.height;
-        meta.region = *tile.region;
-        meta.scene_hash = hex64(scene_text_hash(sources));
-        meta.settings_hash = hex64(fnv1a64(settings_fingerprint(loaded->spec, args.adaptive_lights)));
-        meta.seed = settings.seed;
-        meta.tile_index = tile.index;
-        meta.tile_count = tile.count;
-        meta.scene = display_path(args.scene);
-        meta.frame = job.animated ? job.time.frame : -1;
-        meta.clock = job.time.clock;
+        const TileMeta meta = tile_meta(args, tile, job, *loaded, sources);
         if (!write_file_atomic(output, encode_tile(result.film, meta), error))
             return fail(exit_code::io, error);
     } else if (!render::write_image(output, result.film, error)) {
