@@ -1,6 +1,7 @@
 // `wsd render SCENE [options]`: loads the scene with the command-line overrides, renders the
 // whole image or one tile/region with progress and cancellation, and writes the image (or tile
-// file) atomically, then the statistics. Usage errors are found before any rendering starts.
+// file) atomically, then the statistics — once for a still, once per frame for --frames
+// (app/frames.h). Usage errors are found before any rendering starts.
 #include <charconv>
 #include <chrono>
 #include <cstdio>
