@@ -17,6 +17,7 @@
 #include "app/stats_report.h"
 #include "app/tile_file.h"
 #include "render/image_io.h"
+#include "render/texture.h"
 
 namespace wsd::app {
 
@@ -143,12 +144,14 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
 
 // Loads the scene at `time` with the command line's defines and overrides: an exit status.
 int load_for_render(const RenderArgs& args, const std::string& text, const lang::AnimationTime& time,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& loaded) {
+                    render::ImageCache& images, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& loaded) {
     lang::ParamTable params;
     if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
     load_options.params = &params;
     load_options.time = time;
+    load_options.images = &images;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) {
@@ -226,11 +229,19 @@ TileMeta tile_meta(const RenderArgs& args, const TileRequest& tile, const FrameJ
     return meta;
 }
 
-// Renders one frame (or the still): evaluates the scene's text (read once: stdin cannot be read
-// again) at the frame's time, renders the whole image or the tile, and writes it and its
-// statistics. `signals` spans the whole run, so an interruption between frames stops it too.
-int render_frame(const RenderArgs& args, const std::string& text, TileRequest tile, const FrameJob& job,
-                 const CancelOnSignal& signals) {
+// What the frames of one run share: the scene's text (read once: stdin cannot be read again),
+// the signal guard (an interruption between frames stops the run too) and the decoded texture
+// images (immutable, so every frame still equals its own single render).
+struct RenderRun {
+    std::string text;
+    CancelOnSignal signals;
+    render::ImageCache images;
+};
+
+// Renders one frame (or the still): evaluates the scene at the frame's time, renders the whole
+// image or the tile, and writes it and its statistics.
+int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const FrameJob& job) {
+    const CancelOnSignal& signals = run.signals;
     if (signals.cancelled()) {
         std::cerr << "wsd: interrupted\n";
         return signals.exit_status();
@@ -244,7 +255,8 @@ int render_frame(const RenderArgs& args, const std::string& text, TileRequest ti
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, text, job.time, sources, loaded); status != exit_code::ok)
+    if (const int status = load_for_render(args, run.text, job.time, run.images, sources, loaded);
+        status != exit_code::ok)
         return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
@@ -314,11 +326,9 @@ int run_render(const RenderArgs& args) {
         if (!stats_path.empty() && !output_directory_exists(stats_path, error))
             return fail(exit_code::io, error);
     }
-    std::string text;
-    if (!read_input_file(args.scene, text, error)) return fail(exit_code::io, error);
-    CancelOnSignal signals;
-    return run_frames(plan,
-                      [&](const FrameJob& frame) { return render_frame(args, text, tile, frame, signals); });
+    RenderRun run;
+    if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
+    return run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, run, tile, frame); });
 }
 
 }  // namespace wsd::app

@@ -59,7 +59,8 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
     if (options.build && !options.fragment) {
         const auto build_start = std::chrono::steady_clock::now();
         std::vector<render::SpecError> errors;
-        loaded.scene = render::build_scene(lowered.spec, errors, options.use_bvh, options.threads);
+        loaded.scene =
+            render::build_scene(lowered.spec, errors, options.use_bvh, options.threads, options.images);
         loaded.build_seconds = seconds_since(build_start);
         if (!errors.empty()) report_spec_errors(errors, lowered, sources, diags);
         if (!loaded.scene && diags.error_count() == errors_before)

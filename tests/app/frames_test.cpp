@@ -119,6 +119,17 @@ TEST_CASE("--frame N equals frame N of the whole run, and a still at the same cl
     CHECK(read_file(dir / "still.png") == read_file(dir / "all-0.png"));
 }
 
+TEST_CASE("frames that share texture images still equal their own single renders", "[frames][textures]") {
+    TempDir dir;
+    const std::string scene = shell_quote(std::string(WSD_SOURCE_DIR) + "/examples/cornell.wsd");
+    const std::string opts = " --quiet --width 24 --height 24 --light-samples 1 --supersamples 1";
+    REQUIRE(run_wsd(dir, "render " + scene + opts + " --frames 0-2 -o 'all-#.png'").status == 0);
+    REQUIRE(run_wsd(dir, "render " + scene + opts + " --frames 0-2 --frame 2 -o one.png").status == 0);
+    REQUIRE(run_wsd(dir, "render " + scene + opts + " -o still.png").status == 0);
+    CHECK(read_file(dir / "one.png") == read_file(dir / "all-2.png"));
+    CHECK(read_file(dir / "still.png") == read_file(dir / "all-1.png"));  // cornell.wsd does not move
+}
+
 TEST_CASE("the tiles of a frame merge into that frame; merge refuses tiles of other frames",
           "[frames][tiles]") {
     TempDir dir;
