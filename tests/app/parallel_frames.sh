@@ -30,9 +30,11 @@ for k in 1 2 3 4; do cmp "whole/frame-000$k.png" "frames/frame-000$k.png"; done
 
 # One job per frame and tile (default names scene-####.tile-I-of-2.pfm), then one merge per frame.
 parallel --will-cite -j 2 --halt now,fail=1 \
-  "$wsd" render scene.wsd "${opts[@]}" --frames 1-4 --frame {1} --tile {2}/2 ::: 1 2 3 4 ::: 1 2
-[[ $(ls scene-*.tile-*.pfm | wc -l) == 8 ]]
+  "$wsd" render scene.wsd "${opts[@]}" --frames 1-4 --frame '{1}' --tile '{2}/2' ::: 1 2 3 4 ::: 1 2
+tiles=(scene-*.tile-*.pfm)
+[[ ${#tiles[@]} == 8 ]]
 mkdir out
+# shellcheck disable=SC2016  # {=…=} is parallel's Perl expression, not the shell's
 parallel --will-cite -j 2 --halt now,fail=1 \
   "$wsd" merge 'scene-{=$_=sprintf("%04d",$_)=}.tile-*.pfm' -o 'out/frame-{=$_=sprintf("%04d",$_)=}.png' ::: 1 2 3 4
 for k in 1 2 3 4; do cmp "whole/frame-000$k.png" "out/frame-000$k.png"; done

@@ -31,7 +31,8 @@ for k in 2 3 4 5; do cmp "whole/f-$k.png" "frames/frame-000$k.png"; done
 for t in $(seq 0 11); do
   SLURM_ARRAY_TASK_ID=$t bash "$script" --frames 2-5 --tiles 3 "$scene" tiles "${opts[@]}" --threads 1
 done
-[[ $(ls tiles | wc -l) == 12 ]]
+parts=(tiles/*)
+[[ ${#parts[@]} == 12 ]]
 ls tiles/frame-0004.tile-2-of-3.pfm >/dev/null
 for k in 2 3 4 5; do
   SLURM_ARRAY_TASK_ID=$k bash "$script" --merge --frames 2-5 tiles 'merged/m-##.png'
