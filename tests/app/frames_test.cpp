@@ -173,6 +173,21 @@ TEST_CASE("a failing frame stops the run; the frames before it stay", "[frames][
     CHECK(read_file(dir / "again.png") == read_file(dir / "f-2.png"));
 }
 
+TEST_CASE("an interrupted run keeps the frames written before it, and nothing partial", "[frames][signal]") {
+    TempDir dir;
+    // Frame 0 is 8×8; frame 1 is far too much work to finish within the timeout.
+    std::string scene = tiny_scene(1, 8);
+    const std::string size = "width 8  height 8";
+    REQUIRE(scene.find(size) != std::string::npos);
+    scene.replace(scene.find(size), size.size(),
+                  "width 8 + 1992 * min(frame, 1)  height 8 + 1992 * min(frame, 1)");
+    write_file(dir / "s.wsd", scene);
+    const RunResult r = run_wsd(dir, "render s.wsd --frames 0-3 -o 'f-#.png' --supersamples 64 --quiet",
+                                "timeout --preserve-status -s INT 2");
+    CHECK(r.status == 130);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"f-0.png", "s.wsd"});
+}
+
 TEST_CASE("bad frame options are usage errors, found before anything renders", "[frames][usage]") {
     TempDir dir;
     write_file(dir / "c.wsd", clock_scene);
