@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <set>
 #include <stdexcept>
 
 #include "app/commands.h"
@@ -142,16 +143,26 @@ std::string wrote_line(const std::string& output, const TileRequest& tile, const
     return "wrote " + output + " (" + what + ", " + short_duration(seconds) + ")";
 }
 
+// What the frames of one run share: the scene's text (read once: stdin cannot be read again),
+// the signal guard (an interruption between frames stops the run too) and the decoded texture
+// images (immutable, so every frame still equals its own single render).
+struct RenderRun {
+    std::string text;
+    CancelOnSignal signals;
+    render::ImageCache images;
+    std::set<std::string> warnings_shown;  // each scene warning is printed once per run
+    bool defines_checked = false;          // unread --define warnings come after the first frame only
+};
+
 // Loads the scene at `time` with the command line's defines and overrides: an exit status.
-int load_for_render(const RenderArgs& args, const std::string& text, const lang::AnimationTime& time,
-                    render::ImageCache& images, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& loaded) {
+int load_for_render(const RenderArgs& args, RenderRun& run, const lang::AnimationTime& time,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& loaded) {
     lang::ParamTable params;
     if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
     load_options.params = &params;
     load_options.time = time;
-    load_options.images = &images;
+    load_options.images = &run.images;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) {
@@ -164,8 +175,8 @@ int load_for_render(const RenderArgs& args, const std::string& text, const lang:
             throw OversizedImage{s.width, s.height};
     };
     try {
-        if (const int status =
-                load_scene_text(args.scene, text, load_options, sources, loaded, !args.input.no_warnings);
+        if (const int status = load_scene_text(args.scene, run.text, load_options, sources, loaded,
+                                               !args.input.no_warnings, &run.warnings_shown);
             status != exit_code::ok)
             return status;
     } catch (const OversizedImage& size) {
@@ -173,7 +184,8 @@ int load_for_render(const RenderArgs& args, const std::string& text, const lang:
                                           std::to_string(size.height) + " exceeds 2^28 pixels");
     }
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
-    warn_unread_defines(params, args.input);
+    if (!run.defines_checked) warn_unread_defines(params, args.input);
+    run.defines_checked = true;
     return exit_code::ok;
 }
 
@@ -229,15 +241,6 @@ TileMeta tile_meta(const RenderArgs& args, const TileRequest& tile, const FrameJ
     return meta;
 }
 
-// What the frames of one run share: the scene's text (read once: stdin cannot be read again),
-// the signal guard (an interruption between frames stops the run too) and the decoded texture
-// images (immutable, so every frame still equals its own single render).
-struct RenderRun {
-    std::string text;
-    CancelOnSignal signals;
-    render::ImageCache images;
-};
-
 // Renders one frame (or the still): evaluates the scene at the frame's time, renders the whole
 // image or the tile, and writes it and its statistics.
 int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const FrameJob& job) {
@@ -255,8 +258,7 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, run.text, job.time, run.images, sources, loaded);
-        status != exit_code::ok)
+    if (const int status = load_for_render(args, run, job.time, sources, loaded); status != exit_code::ok)
         return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);

@@ -173,6 +173,20 @@ TEST_CASE("a failing frame stops the run; the frames before it stay", "[frames][
     CHECK(read_file(dir / "again.png") == read_file(dir / "f-2.png"));
 }
 
+TEST_CASE("a warning that every frame gives is printed once per run", "[frames][warnings]") {
+    TempDir dir;
+    write_file(dir / "c.wsd", clock_scene);  // no lights: a warning at every frame
+    const RunResult r = run_wsd(dir, "render c.wsd --quiet --frames 0-3 -o 'f-#.pfm' -D unused=1");
+    REQUIRE(r.status == 0);
+    const auto count = [&](const std::string& text) {
+        size_t n = 0;
+        for (size_t at = r.err.find(text); at != std::string::npos; at = r.err.find(text, at + 1)) ++n;
+        return n;
+    };
+    CHECK(count("warning: no lights") == 1);
+    CHECK(count("--define unused was not used") == 1);
+}
+
 TEST_CASE("an interrupted run keeps the frames written before it, and nothing partial", "[frames][signal]") {
     TempDir dir;
     // Frame 0 is 8×8; frame 1 is far too much work to finish within the timeout.
