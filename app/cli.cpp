@@ -10,6 +10,7 @@
 #include "app/commands.h"
 #include "app/exit_codes.h"
 #include "app/image_files.h"
+#include "app/frames.h"
 #include "lang/diagnostics.h"
 
 namespace wsd::app {
@@ -152,6 +153,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
                 return parse_aov_list(text, selection, error) ? std::string() : error;
             },
             "LIST"));
+    cmd->add_option("--frames", args.frames,
+                    "A-B: render frames A to B, clock going from 0 to 1; '#'s in -o become the frame number");
+    cmd->add_option("--frame", args.frame, "N: render only frame N of --frames (a farm's task)")
+        ->check(integer_in(0, max_frame_number));
+    cmd->add_option("--clock", args.clock, "X: the value of clock in a still (default 0)");
     return cmd;
 }
 

@@ -51,7 +51,12 @@ bool intersects(const render::Region& a, const render::Region& b) {
     return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
-// Every tile must agree with the first on the scene, the settings, the size and the seed.
+std::string frame_name(const TileMeta& meta) {
+    return meta.frame < 0 ? std::string("a still") : "frame " + std::to_string(meta.frame);
+}
+
+// Every tile must agree with the first on the scene, the frame and its clock, the settings, the
+// size and the seed.
 int check_consistency(const std::vector<Tile>& tiles) {
     const Tile& first = tiles.front();
     for (const Tile& t : tiles) {
@@ -69,6 +74,13 @@ int check_consistency(const std::vector<Tile>& tiles) {
                             std::to_string(t.meta.full_height) + " image, but '" + first.path + "' to a " +
                             std::to_string(first.meta.full_width) + "x" +
                             std::to_string(first.meta.full_height) + " one");
+        if (t.meta.frame != first.meta.frame)
+            return fail(exit_code::input_error, "tile '" + t.path + "' is of " + frame_name(t.meta) +
+                                                    ", but '" + first.path + "' of " +
+                                                    frame_name(first.meta));
+        if (t.meta.clock != first.meta.clock)
+            return fail(exit_code::input_error,
+                        "tile '" + t.path + "' was rendered at another clock than '" + first.path + "'");
         if (t.meta.settings_hash != first.meta.settings_hash)
             return fail(
                 exit_code::input_error,

@@ -1,14 +1,17 @@
 // `wsd render SCENE [options]`: loads the scene with the command-line overrides, renders the
 // whole image or one tile/region with progress and cancellation, and writes the image (or tile
-// file) atomically, then the statistics. Usage errors are found before any rendering starts.
+// file) atomically, then the statistics — once for a still, once per frame for --frames
+// (app/frames.h). Usage errors are found before any rendering starts.
 #include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <set>
 #include <stdexcept>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
+#include "app/frames.h"
 #include "app/image_files.h"
 #include "app/io_util.h"
 #include "app/progress.h"
@@ -16,6 +19,7 @@
 #include "app/stats_report.h"
 #include "app/tile_file.h"
 #include "render/image_io.h"
+#include "render/texture.h"
 
 namespace wsd::app {
 
@@ -78,8 +82,9 @@ bool parse_region(const std::string& text, TileRequest& tile, std::string& error
     return true;
 }
 
-std::string default_output(const RenderArgs& args, const TileRequest& tile) {
-    const std::string stem = scene_stem(args.scene);
+// NAME.png, NAME.tile-I-of-N.pfm or NAME.region-….pfm; NAME-####… for the frames of --frames.
+std::string default_output(const RenderArgs& args, const TileRequest& tile, bool animated) {
+    const std::string stem = scene_stem(args.scene) + (animated ? "-####" : "");
     if (tile.count > 0)
         return stem + ".tile-" + std::to_string(tile.index) + "-of-" + std::to_string(tile.count) + ".pfm";
     if (tile.region) {
@@ -152,13 +157,26 @@ std::string aov_note(const std::string& output, const AovSelection& aovs) {
     return "auxiliary images: " + files + "\n";
 }
 
-// Loads the scene with the command line's defines and overrides: an exit status.
-int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
-                    std::optional<lang::LoadedScene>& loaded) {
+// What the frames of one run share: the scene's text (read once: stdin cannot be read again),
+// the signal guard (an interruption between frames stops the run too) and the decoded texture
+// images (immutable, so every frame still equals its own single render).
+struct RenderRun {
+    std::string text;
+    CancelOnSignal signals;
+    render::ImageCache images;
+    std::set<std::string> warnings_shown;  // each scene warning is printed once per run
+    bool defines_checked = false;          // unread --define warnings come after the first frame only
+};
+
+// Loads the scene at `time` with the command line's defines and overrides: an exit status.
+int load_for_render(const RenderArgs& args, RenderRun& run, const lang::AnimationTime& time,
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& loaded) {
     lang::ParamTable params;
-    if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
+    if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
     lang::LoadOptions load_options;
     load_options.params = &params;
+    load_options.time = time;
+    load_options.images = &run.images;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
     load_options.adjust = [&](render::SceneSpec& spec) {
@@ -171,8 +189,8 @@ int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
             throw OversizedImage{s.width, s.height};
     };
     try {
-        if (const int status =
-                load_scene_file(args.scene, load_options, sources, loaded, !args.input.no_warnings);
+        if (const int status = load_scene_text(args.scene, run.text, load_options, sources, loaded,
+                                               !args.input.no_warnings, &run.warnings_shown);
             status != exit_code::ok)
             return status;
     } catch (const OversizedImage& size) {
@@ -180,12 +198,20 @@ int load_for_render(const RenderArgs& args, lang::SourceManager& sources,
                                           std::to_string(size.height) + " exceeds 2^28 pixels");
     }
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
-    warn_unread_defines(params, args.input);
+    if (!run.defines_checked) warn_unread_defines(params, args.input);
+    run.defines_checked = true;
     return exit_code::ok;
 }
 
+// Where a frame goes: -o or the default name, with the frame number in its '#' runs (a still's
+// '#' is literal).
+std::string frame_output(const RenderArgs& args, const TileRequest& tile, const FrameJob& job) {
+    const std::string pattern = args.output.empty() ? default_output(args, tile, job.animated) : args.output;
+    return job.animated ? frame_path(pattern, job.time.frame) : pattern;
+}
+
 // --stats (a table on stdout) and --stats-json FILE: an exit status.
-int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
+int report_stats(const RenderArgs& args, const std::string& stats_json, const lang::LoadedScene& loaded,
                  const render::RenderResult& result) {
     const render::Settings& settings = loaded.spec.settings;
     std::string error;
@@ -205,41 +231,54 @@ int report_stats(const RenderArgs& args, const lang::LoadedScene& loaded,
     report.peak_memory_bytes = peak_memory_bytes();
     report.effects = result.effects;
     if (args.stats) std::cout << stats_table(report) << std::flush;
-    if (!args.stats_json.empty() && !write_file_atomic(args.stats_json, stats_json(report), error))
+    if (!stats_json.empty() && !write_file_atomic(stats_json, app::stats_json(report), error))
         return fail(exit_code::io, error);
     return exit_code::ok;
 }
 
-}  // namespace
+// What a tile file records of the render that made it (tile_file.h).
+TileMeta tile_meta(const RenderArgs& args, const TileRequest& tile, const FrameJob& job,
+                   const lang::LoadedScene& loaded, const lang::SourceManager& sources) {
+    const render::Settings& settings = loaded.spec.settings;
+    TileMeta meta;
+    meta.full_width = settings.width;
+    meta.full_height = settings.height;
+    meta.region = *tile.region;
+    meta.scene_hash = hex64(scene_text_hash(sources));
+    meta.settings_hash = hex64(fnv1a64(settings_fingerprint(loaded.spec, args.adaptive_lights)));
+    meta.seed = settings.seed;
+    meta.tile_index = tile.index;
+    meta.tile_count = tile.count;
+    meta.scene = display_path(args.scene);
+    meta.frame = job.animated ? job.time.frame : -1;
+    meta.clock = job.time.clock;
+    return meta;
+}
 
-int run_render(const RenderArgs& args) {
+// Renders one frame (or the still): evaluates the scene at the frame's time, renders the whole
+// image or the tile, and writes it and its statistics.
+int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const AovSelection& aovs,
+                 const FrameJob& job) {
+    const CancelOnSignal& signals = run.signals;
+    if (signals.cancelled()) {
+        std::cerr << "wsd: interrupted\n";
+        return signals.exit_status();
+    }
     const auto start = std::chrono::steady_clock::now();
-    TileRequest tile;
-    std::string error;
-    if (!args.tile.empty() && !args.region.empty())
-        return fail(exit_code::usage, "--tile and --region cannot be used together");
-    if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
-    if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
-    const bool tiled = tile.count > 0 || tile.region.has_value();
-    AovSelection aovs;
-    if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error))
-        return fail(exit_code::usage, "--aov: " + error);
-
-    const std::string output = args.output.empty() ? default_output(args, tile) : args.output;
+    const std::string output = frame_output(args, tile, job);
     const render::ImageFormat format = render::format_from_extension(output);
-    if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
-    if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
-    if (!args.stats_json.empty() && !output_directory_exists(args.stats_json, error))
-        return fail(exit_code::io, error);
+    const std::string stats_path =
+        job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
+    std::string error;
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, sources, loaded); status != exit_code::ok) return status;
+    if (const int status = load_for_render(args, run, job.time, sources, loaded); status != exit_code::ok)
+        return status;
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 
-    CancelOnSignal signals;
-    ProgressReporter progress(progress_mode(args.quiet), "render");
+    ProgressReporter progress(progress_mode(args.quiet), job.progress_label(), job.run_start);
     render::RenderOptions options;
     options.threads = args.threads;
     options.use_bvh = !args.no_bvh;
@@ -249,26 +288,20 @@ int run_render(const RenderArgs& args) {
     options.aovs = aovs.any();
     options.cancel = signals.flag();
     options.progress = [&](double fraction, const render::RayStats& so_far) {
-        progress.update(fraction, so_far);
+        progress.update(job.run_fraction(fraction), so_far);
     };
     const render::RenderResult result = render::render(*loaded->scene, options);
-    progress.finish(!result.cancelled && !signals.cancelled());
-    if (result.cancelled || signals.cancelled()) {
+    const bool completed = !result.cancelled && !signals.cancelled();
+    if (completed) progress.update(job.run_fraction(1.0), result.stats);
+    progress.finish(completed && job.index + 1 == job.count);
+    if (!completed) {
         std::cerr << "wsd: interrupted; no image written\n";
         return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
     }
 
-    if (tiled && format == render::ImageFormat::Pfm) {
-        TileMeta meta;
-        meta.full_width = settings.width;
-        meta.full_height = settings.height;
-        meta.region = *tile.region;
-        meta.scene_hash = hex64(scene_text_hash(sources));
-        meta.settings_hash = hex64(fnv1a64(settings_fingerprint(loaded->spec, args.adaptive_lights)));
-        meta.seed = settings.seed;
-        meta.tile_index = tile.index;
-        meta.tile_count = tile.count;
-        meta.scene = display_path(args.scene);
+    const bool tile_file = (tile.count > 0 || tile.region.has_value()) && format == render::ImageFormat::Pfm;
+    if (tile_file) {
+        TileMeta meta = tile_meta(args, tile, job, *loaded, sources);
         meta.aovs = aovs;
         if (!write_file_atomic(output, encode_tile(result.film, result.aovs, meta), error))
             return fail(exit_code::io, error);
@@ -281,10 +314,42 @@ int run_render(const RenderArgs& args) {
                          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
                   << '\n'
                   << std::flush;
-    if (!args.quiet && !(tiled && format == render::ImageFormat::Pfm)) std::cerr << aov_note(output, aovs);
+    if (!args.quiet && !tile_file) std::cerr << aov_note(output, aovs);
 
-    if (args.stats || !args.stats_json.empty()) return report_stats(args, *loaded, result);
+    if (args.stats || !stats_path.empty()) return report_stats(args, stats_path, *loaded, result);
     return exit_code::ok;
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+    TileRequest tile;
+    std::string error;
+    if (!args.tile.empty() && !args.region.empty())
+        return fail(exit_code::usage, "--tile and --region cannot be used together");
+    if (!args.tile.empty() && !parse_tile(args.tile, tile, error)) return fail(exit_code::usage, error);
+    if (!args.region.empty() && !parse_region(args.region, tile, error)) return fail(exit_code::usage, error);
+    AovSelection aovs;
+    if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error))
+        return fail(exit_code::usage, "--aov: " + error);
+    FramePlan plan;
+    if (const int status = plan_frames(args, plan); status != exit_code::ok) return status;
+
+    // Every frame's outputs are checked before the first frame renders.
+    FrameJob job;
+    job.animated = plan.animated;
+    for (const long long frame : plan.frames) {
+        job.time = plan.time_of(frame);
+        const std::string output = frame_output(args, tile, job);
+        if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
+        if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
+        const std::string stats_path = plan.animated ? frame_path(args.stats_json, frame) : args.stats_json;
+        if (!stats_path.empty() && !output_directory_exists(stats_path, error))
+            return fail(exit_code::io, error);
+    }
+    RenderRun run;
+    if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
+    return run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, run, tile, aovs, frame); });
 }
 
 }  // namespace wsd::app

@@ -2,6 +2,7 @@
 // the command line (CLI11); each run_* function returns an exit status (exit_codes.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,7 @@ int run_ast(const AstArgs& args);
 struct RenderArgs {
     std::string scene;
     SceneInputArgs input;
-    std::string output;  // empty: ./NAME.png (./NAME.tile-I-of-N.pfm for tiles)
+    std::string output;  // empty: ./NAME.png (./NAME.tile-I-of-N.pfm for tiles; NAME-####… for frames)
     SceneOverrides overrides;
     int threads = 0;
     bool no_bvh = false;
@@ -36,9 +37,12 @@ struct RenderArgs {
     std::string stats_json;
     bool quiet = false;
     bool adaptive_lights = false;
-    std::string tile;    // "I/N"
-    std::string region;  // "x0,y0,x1,y1"
-    std::string aov;     // auxiliary images, "albedo,normal,depth" or any of them; empty: none
+    std::string tile;                // "I/N"
+    std::string region;              // "x0,y0,x1,y1"
+    std::string aov;                 // auxiliary images, "albedo,normal,depth" or any of them; empty: none
+    std::string frames;              // "A-B": an animation (app/frames.h)
+    std::optional<long long> frame;  // --frame N: only frame N of --frames
+    std::optional<double> clock;     // --clock X: `clock` of a still
 };
 int run_render(const RenderArgs& args);
 

@@ -45,8 +45,13 @@ std::string format_duration(double seconds) {
     return buf;
 }
 
-ProgressReporter::ProgressReporter(ProgressMode mode, std::string label)
-    : mode_(mode), label_(std::move(label)), start_(std::chrono::steady_clock::now()), last_print_(start_) {}
+ProgressReporter::ProgressReporter(ProgressMode mode, std::string label,
+                                   std::chrono::steady_clock::time_point run_start)
+    : mode_(mode),
+      label_(std::move(label)),
+      start_(run_start),
+      rate_start_(std::chrono::steady_clock::now()),
+      last_print_(run_start) {}  // a run of short frames still prints a line every few seconds
 
 void ProgressReporter::update(double fraction, const render::RayStats& so_far) {
     if (mode_ == ProgressMode::None) return;
@@ -74,9 +79,11 @@ void ProgressReporter::finish(bool completed) {
 
 void ProgressReporter::print(double fraction, uint64_t rays, bool final_update) {
     fraction = std::fmin(std::fmax(fraction, 0.0), 1.0);
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
     const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : -1;
-    const double rate = elapsed > 0 ? static_cast<double>(rays) / elapsed : 0;
+    const double rendering = std::chrono::duration<double>(now - rate_start_).count();
+    const double rate = rendering > 0 ? static_cast<double>(rays) / rendering : 0;
     char percent[16];
     std::snprintf(percent, sizeof percent, "%3.0f%%", 100 * fraction);
     if (mode_ == ProgressMode::Bar) {

@@ -21,7 +21,10 @@ std::string format_duration(double seconds);
 
 class ProgressReporter {
 public:
-    ProgressReporter(ProgressMode mode, std::string label);
+    // `run_start`: when the run began (earlier than now for a frame of an animation); the elapsed
+    // time and the ETA are the run's, and update() takes the run's fraction. Rays/s count from now.
+    ProgressReporter(ProgressMode mode, std::string label,
+                     std::chrono::steady_clock::time_point run_start = std::chrono::steady_clock::now());
     void update(double fraction, const render::RayStats& so_far);
     void finish(bool completed = true);  // ends the bar's line (at 100% if completed); idempotent
 
@@ -31,6 +34,7 @@ private:
     ProgressMode mode_;
     std::string label_;
     std::chrono::steady_clock::time_point start_;
+    std::chrono::steady_clock::time_point rate_start_;
     std::chrono::steady_clock::time_point last_print_;
     std::mutex mutex_;
     bool printed_ = false;

@@ -30,14 +30,15 @@ std::string display_path(const std::string& path) {
     return path == "-" ? "<stdin>" : path;
 }
 
-int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params) {
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params,
+                     const lang::AnimationTime& time) {
     for (const std::string& define : defines) {
         const size_t eq = define.find('=');
         if (eq == std::string::npos || eq == 0)
             return fail(exit_code::usage, "--define '" + define + "': expected NAME=EXPR");
         const std::string name = define.substr(0, eq);
         std::string error;
-        std::optional<lang::Value> value = lang::evaluate_define(define.substr(eq + 1), error);
+        std::optional<lang::Value> value = lang::evaluate_define(define.substr(eq + 1), error, time);
         if (!value) return fail(exit_code::usage, "--define " + name + ": " + error);
         params.set(name, std::move(*value));
     }
@@ -60,13 +61,27 @@ lang::Diagnostics errors_only(const lang::Diagnostics& diags) {
     return errors;
 }
 
+// The warnings of `diags` (which has no errors) not already in `shown` (by file, offset and
+// message), which gains them.
+lang::Diagnostics without_shown(const lang::Diagnostics& diags, std::set<std::string>& shown) {
+    lang::Diagnostics kept;
+    for (const lang::Diagnostic& d : diags.all()) {
+        const std::string key =
+            std::to_string(d.span.file) + ":" + std::to_string(d.span.begin) + ":" + d.message;
+        if (shown.insert(key).second) kept.warning(d.span, d.message) = d;
+    }
+    return kept;
+}
+
 }  // namespace
 
 int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene, bool warnings) {
+                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene, bool warnings,
+                    std::set<std::string>* shown) {
     lang::Diagnostics diags;
     scene = lang::load_scene(display_path(path), text, sources, diags, options);
     if (!warnings) diags = errors_only(diags);
+    if (shown && !diags.has_errors()) diags = without_shown(diags, *shown);
     if (!diags.all().empty()) std::cerr << lang::format_diagnostics(diags, sources);
     if (diags.has_errors()) {
         scene.reset();

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,9 @@ struct SceneInputArgs {
 
 // The values of the --define options, evaluated once per command (lang::evaluate_define).
 // Returns an exit status: 0, or 2 (usage) with a message naming the bad define.
-int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params);
+// `time`: the `clock` and `frame` the expressions see (a still's by default).
+int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params,
+                     const lang::AnimationTime& time = {});
 
 // After a successful load: a warning for each --define that no param() call read.
 void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input);
@@ -54,10 +57,12 @@ std::string display_path(const std::string& path);
 int load_scene_file(const std::string& path, const lang::LoadOptions& options, lang::SourceManager& sources,
                     std::optional<lang::LoadedScene>& scene, bool warnings = true);
 
-// Same, from text already read (bench loads one text many times).
+// Same, from text already read (bench loads one text many times). `shown`, when given, holds the
+// warnings printed by earlier loads of the same scene (the frames of an animation): those are not
+// printed again.
 int load_scene_text(const std::string& path, const std::string& text, const lang::LoadOptions& options,
                     lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene,
-                    bool warnings = true);
+                    bool warnings = true, std::set<std::string>* shown = nullptr);
 
 // FNV-1a 64 of every source file the load read (the scene and its includes), in order.
 uint64_t scene_text_hash(const lang::SourceManager& sources);

@@ -70,6 +70,13 @@ bool read_trailer(const Json& fields, TileMeta& meta, std::string& error) {
         meta.tile_count = t[1];
     }
     if (const Json& scene = field(fields, "scene"); scene.is_string()) meta.scene = scene.get<std::string>();
+    if (const Json& frame = field(fields, "frame");
+        !frame.is_null() && !whole_number(frame, 0, 1e15, meta.frame))
+        return missing("'frame' is not a whole number");
+    if (const Json& clock = field(fields, "clock"); !clock.is_null()) {
+        if (!clock.is_number()) return missing("'clock' is not a number");
+        meta.clock = clock.get<double>();
+    }
     meta.aovs = {};
     if (const Json& aovs = field(fields, "aovs"); !aovs.is_null()) {
         if (!aovs.is_array()) return missing("'aovs' is not a list of names");
@@ -125,6 +132,9 @@ std::string encode_tile(const render::Film& film, const render::AovFilm& aovs, c
                  {"settings_hash", meta.settings_hash},
                  {"scene", meta.scene}};
     if (meta.aovs.any()) json["aovs"] = meta.aovs.names();
+    // A still's tile has neither: its bytes stay those of a tile before animation existed.
+    if (meta.frame >= 0) json["frame"] = meta.frame;
+    if (meta.frame >= 0 || meta.clock != 0) json["clock"] = meta.clock;
     // A scene path that is not UTF-8 is only for messages: its bad bytes become U+FFFD.
     std::string out = render::encode_pfm(film);
     out += "\n";

@@ -22,6 +22,8 @@ struct TileMeta {
     int tile_index = 0, tile_count = 0;  // from --tile I/N; 0 for --region
     std::string scene;                   // the scene path as given, for messages
     AovSelection aovs;                   // the auxiliary images the tile carries
+    long long frame = -1;                // the frame of --frames; -1 for a still
+    double clock = 0;                    // the scene's `clock`
 };
 
 // The bytes of a tile file: PFM ("PF", bottom row first, little-endian floats) + trailer, then

@@ -347,6 +347,8 @@ const std::vector<BuiltinConstant>& builtin_constants() {
         {"pi", Value::make_number(std::numbers::pi, Span{})},
         {"on", Value::make_bool(true, Span{})},
         {"off", Value::make_bool(false, Span{})},
+        {"clock", Value::make_number(0, Span{})},
+        {"frame", Value::make_number(0, Span{})},
     };
     return table;
 }

@@ -1,4 +1,4 @@
-// Built-in functions (sin … srgb) and constants (pi, on, off). They live in a scope outside the
+// Built-in functions (sin … srgb) and constants (pi, on, off, clock, frame). They live in a scope outside the
 // file's own, so a `let` may shadow them. Each function checks its argument count and types and
 // reports domain errors and non-finite results at the function's name.
 #pragma once
@@ -38,7 +38,15 @@ struct BuiltinConstant {
     std::string_view name;
     Value value;  // with an empty span
 };
+// The constants with a still's `clock` and `frame` (0 and 0); the interpreter replaces those two
+// with the values of the frame it evaluates (AnimationTime).
 const std::vector<BuiltinConstant>& builtin_constants();
+
+// Where in an animation a scene is evaluated: `clock` and `frame` (wsd-language.md, Animation).
+struct AnimationTime {
+    double clock = 0;
+    long long frame = 0;
+};
 
 // The sRGB transfer function, decoding: 0..1 encoded → 0..1 linear.
 double srgb_to_linear(double c);

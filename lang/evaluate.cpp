@@ -77,6 +77,8 @@ std::optional<Value> Interpreter::eval(const Expr& expr) {
 std::optional<Value> Interpreter::eval_ident(const IdentExpr& expr) {
     const std::string_view name = expr.name;
     if (const Binding* b = find(name)) return b->value;  // empty if its definition failed
+    if (name == "clock") return Value::make_number(time_.clock, expr.span);
+    if (name == "frame") return Value::make_number(static_cast<double>(time_.frame), expr.span);
     for (const BuiltinConstant& c : builtin_constants()) {
         if (c.name == name) {
             Value v = c.value;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lang/ast.h"
+#include "lang/builtins.h"
 #include "lang/diagnostics.h"
 #include "lang/environment.h"
 #include "lang/lower.h"
@@ -46,6 +47,8 @@ public:
     void run(const Program& program);
     // The --define values that `param` returns; the table must outlive the run.
     void set_params(const ParamTable* params) { params_ = params; }
+    // The values of the built-in constants `clock` and `frame` (a still's 0 and 0 by default).
+    void set_time(const AnimationTime& time) { time_ = time; }
     // Evaluates one expression in the current (top) scope.
     std::optional<Value> evaluate(const Expr& expr);
     // A binding of the file's top scope (for tests); nullopt if absent or failed.
@@ -160,6 +163,7 @@ private:
     SceneBuilder& scene_;
     Limits limits_;
     const ParamTable* params_ = nullptr;
+    AnimationTime time_;
     ScopePtr scope_;                             // the innermost scope of the code that runs
     ScopePtr top_;                               // the main file's top scope
     std::vector<ScopePtr> spare_;                // popped scopes nothing else held, reused by push_scope

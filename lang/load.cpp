@@ -36,6 +36,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         {
             Interpreter interpreter(sources, diags, builder);
             interpreter.set_params(options.params);
+            interpreter.set_time(options.time);
             interpreter.run(program);
             camera_seen = interpreter.camera_seen();
             aborted = interpreter.aborted();
@@ -58,7 +59,8 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
     if (options.build && !options.fragment) {
         const auto build_start = std::chrono::steady_clock::now();
         std::vector<render::SpecError> errors;
-        loaded.scene = render::build_scene(lowered.spec, errors, options.use_bvh, options.threads);
+        loaded.scene =
+            render::build_scene(lowered.spec, errors, options.use_bvh, options.threads, options.images);
         loaded.build_seconds = seconds_since(build_start);
         if (!errors.empty()) report_spec_errors(errors, lowered, sources, diags);
         if (!loaded.scene && diags.error_count() == errors_before)

@@ -31,6 +31,8 @@ struct LoadOptions {
     int threads = 0;
     std::function<void(render::SceneSpec&)> adjust;  // command-line overrides, before building
     const ParamTable* params = nullptr;              // --define values that param() returns
+    AnimationTime time;                              // `clock` and `frame` (0 and 0: a still)
+    render::ImageCache* images = nullptr;            // texture images kept across loads (frames)
 };
 
 struct LoadedScene {

@@ -30,7 +30,7 @@ std::vector<std::string> ParamTable::unread() const {
     return names;
 }
 
-std::optional<Value> evaluate_define(const std::string& expr, std::string& error) {
+std::optional<Value> evaluate_define(const std::string& expr, std::string& error, const AnimationTime& time) {
     static constexpr const char* binding = "value";
     SourceManager sources;
     Diagnostics diags;
@@ -44,6 +44,7 @@ std::optional<Value> evaluate_define(const std::string& expr, std::string& error
     if (!diags.has_errors()) {
         SceneBuilder builder(file);
         Interpreter interpreter(sources, diags, builder);
+        interpreter.set_time(time);
         interpreter.run(program);
         value = interpreter.lookup(binding);
     }

@@ -28,10 +28,12 @@ private:
     mutable std::set<std::string> read_;
 };
 
-// Evaluates the EXPR of a --define with only the built-ins in scope. The value must be a number,
+// Evaluates the EXPR of a --define with only the built-ins in scope (`clock` and `frame` those of
+// `time`). The value must be a number,
 // bool, string or vector (values that carry no source position of their own); otherwise nullopt
 // and `error` says why.
-std::optional<Value> evaluate_define(const std::string& expr, std::string& error);
+std::optional<Value> evaluate_define(const std::string& expr, std::string& error,
+                                     const AnimationTime& time = {});
 
 // The built-in `param(NAME, DEFAULT)`: the call's table's value for NAME, else DEFAULT; a
 // value whose type differs from DEFAULT's is an error at the call.

@@ -54,11 +54,14 @@ struct RenderResult {
     std::vector<std::string> effects;  // the effects the scene calls for (see effects.h)
 };
 
-class Scene;  // geometry + lights + materials + textures, ready to render
+class Scene;       // geometry + lights + materials + textures, ready to render
+class ImageCache;  // decoded texture images by path (texture.h)
 
-// Builds everything the render needs; nullptr with errors appended on bad input.
+// Builds everything the render needs; nullptr with errors appended on bad input. `images`, when
+// given, keeps the decoded texture images for later builds (the frames of an animation read each
+// file once); without it each build loads its own.
 std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors,
-                                         bool use_bvh = true, int threads = 0);
+                                         bool use_bvh = true, int threads = 0, ImageCache* images = nullptr);
 
 RenderResult render(const Scene& scene, const RenderOptions& options);
 

@@ -230,7 +230,7 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
 }
 
 std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
-                                         int threads) {
+                                         int threads, ImageCache* images) {
     const auto start = std::chrono::steady_clock::now();
     const size_t errors_before = errors.size();
     auto scene = std::shared_ptr<Scene>(new Scene());
@@ -256,7 +256,8 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
         if (l.kind == LightKind::Area && l.samples_u * l.samples_v > 1) scene->multi_cell_area_light_ = true;
     }
 
-    ImageCache cache;
+    ImageCache own_cache;
+    ImageCache& cache = images ? *images : own_cache;
     bool materials_ok = true;
     for (size_t i = 0; i < spec.materials.size(); ++i) {
         const MaterialSpec& ms = spec.materials[i];

@@ -47,7 +47,8 @@ public:
     double build_seconds() const { return build_seconds_; }
 
 private:
-    friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&, bool, int);
+    friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&, bool, int,
+                                                    ImageCache*);
     void compute_transmissive_bounds(const SceneSpec& spec);
 
     std::unique_ptr<Geometry> geometry_;

@@ -41,8 +41,8 @@ render() {  # render NAME SCENE_FILE_OR_- [wsd options...]
   (cd examples && "$wsd" render "$scene" -o "../$out/$name.png" --quiet "$@")
   echo "gallery: $name took $((SECONDS - t0)) s" >&2
 }
-size_of() {  # the scene's own aspect ratio, scaled to $width
-  local w h
+size_of() {  # SCENE [WIDTH]: the scene's own aspect ratio, scaled to WIDTH (default $width)
+  local w h width=${2:-$width}
   w=$(grep -oE 'width +[0-9]+' "examples/$1" | head -1 | awk '{print $2}'); w=${w:-640}
   h=$(grep -oE 'height +[0-9]+' "examples/$1" | head -1 | awk '{print $2}'); h=${h:-480}
   echo "--width $width --height $((width * h / w))"
@@ -69,6 +69,12 @@ if ((!captions_only)); then
   # The report's Figure 6: one ray per pixel (the file's own setting is a jittered 4×4 grid).
   # shellcheck disable=SC2046
   render supersampling-1 supersampling.wsd $(size_of supersampling.wsd) --supersamples 1
+  # The animation of bounce.wsd as a GIF, at the width the README shows (36 frames, one loop).
+  if wanted bounce-gif; then
+    echo "gallery: bounce-gif" >&2
+    # shellcheck disable=SC2046
+    WSD=$wsd tools/animate.sh --loop examples/bounce.wsd "$out/bounce.gif" $(size_of bounce.wsd "$shown") --supersamples 16 --quiet
+  fi
 fi
 
 # The README section.
