@@ -3,37 +3,14 @@
 // scopes whose object statements add members, `object EXPR { ... }` instances, the solid check of
 // CSG members, and delivery of a value where objects go (the body being evaluated, or the scene).
 #include <algorithm>
-#include <unordered_map>
 
 #include "lang/interpreter.h"
 #include "lang/object_value.h"
+#include "render/mesh_topology.h"
 
 namespace wsd::lang {
 
 namespace {
-
-// Why a mesh does not bound a solid, or nothing: every edge must be shared by exactly two faces
-// that run along it in opposite directions (consistently oriented).
-std::optional<std::string> mesh_closedness_problem(const render::MeshData& mesh) {
-    std::unordered_map<uint64_t, uint32_t> directed;  // edge a→b: how many faces run along it
-    directed.reserve(mesh.faces.size() * 3);
-    auto key = [](uint32_t a, uint32_t b) { return (uint64_t{a} << 32) | b; };
-    for (const glm::uvec3& f : mesh.faces)
-        for (int i = 0; i < 3; ++i) ++directed[key(f[i], f[(i + 1) % 3])];
-    // In face order, so that the edge named is the same on every machine.
-    for (const glm::uvec3& f : mesh.faces) {
-        for (int i = 0; i < 3; ++i) {
-            const uint32_t a = f[i], b = f[(i + 1) % 3];
-            const std::string name =
-                "the edge between vertices " + std::to_string(a) + " and " + std::to_string(b);
-            if (const uint32_t count = directed[key(a, b)]; count > 1)
-                return name + " is run along the same way by " + std::to_string(count) + " faces";
-            if (directed.find(key(b, a)) == directed.end())
-                return name + " belongs to only one face (the mesh has a hole)";
-        }
-    }
-    return std::nullopt;
-}
 
 // Why a CSG member is not a solid ("'disc'"), with a help line when there is more to say.
 std::optional<std::string> not_solid(const ObjectValue& v, std::string& help) {
@@ -59,8 +36,8 @@ std::optional<std::string> not_solid(const ObjectValue& v, std::string& help) {
             return std::nullopt;
         case render::ShapeKind::Mesh:
             if (s.mesh)
-                if (auto problem = mesh_closedness_problem(*s.mesh)) {
-                    help = "it is not closed: " + *problem;
+                if (auto problem = render::closed_mesh_problem(*s.mesh)) {
+                    help = *problem;
                     return std::string("'mesh'");
                 }
             return std::nullopt;
