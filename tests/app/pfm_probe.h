@@ -53,13 +53,4 @@ inline int pixels_differing(const PfmImage& a, const PfmImage& b, float toleranc
     return n;
 }
 
-// Pixels whose colour differs from `background` (what a ray that hits nothing shows).
-inline int pixels_covered(const PfmImage& img, const float background[3]) {
-    int n = 0;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x)
-            if (std::memcmp(img.at(x, y), background, 12) != 0) ++n;
-    return n;
-}
-
 }  // namespace wsd::test
