@@ -1,7 +1,8 @@
 // Object values into the render spec: a group added as a statement is flattened into world shapes
 // (each member's transforms first, then the group's), `object` of a group or a mesh adds Instance
 // shapes of one prototype per distinct value (and per material variant), a single primitive or a
-// CSG added by `object` is copied (it is no more than its one shape), and a CSG becomes one Csg
+// CSG added by `object` is copied (it is no more than its one shape), so is a plane in an instanced
+// group (it has no bounds for the prototype's tree), and a CSG becomes one Csg
 // shape whose members are in its own frame. Prototypes never contain instances: an `object` inside
 // an instanced group becomes an instance of its own at the top level, with composed transforms.
 //
@@ -33,8 +34,8 @@ Inherit own_or(const ObjectValue& v, const Inherit& outer) {
 
 // An `object` nested in an instanced group: placed again wherever that group is placed.
 struct SubInstance {
-    ObjectPtr instance;  // the `object` that adds it (where its instances are reported)
-    ObjectPtr target;    // a group or a mesh
+    ObjectPtr instance;  // the `object` that adds it (where its instances are reported), or the plane
+    ObjectPtr target;    // a group, a mesh, or a plane (copied per instance)
     render::Mat4 transform;
     Inherit inherit;  // Container: the enclosing instance's material
 };
@@ -74,6 +75,11 @@ private:
     void walk(const ObjectPtr& v, const render::Mat4& m, const Inherit& inherit, Out out) {
         switch (v->kind) {
             case ObjectKind::Leaf:
+                if (out.subs && v->leaf->shape.kind == render::ShapeKind::Plane) {
+                    // A plane has no bounds for a prototype's tree: each instance adds a copy.
+                    out.subs->push_back({v, v, m, inherit});
+                    return;
+                }
                 emit_leaf(*v, m, inherit, *out.shapes);
                 return;
             case ObjectKind::Group: {
@@ -113,6 +119,10 @@ private:
     // Instances of `target` (a group or a mesh) in the world: its prototype, and its nested ones.
     void instantiate(const ObjectValue& instance, const ObjectPtr& target, const render::Mat4& m,
                      const Inherit& inherit) {
+        if (target->kind == ObjectKind::Leaf && !target->is_mesh()) {  // a plane of an instanced group
+            emit_leaf(*target, m, inherit, b_.scene_.spec.shapes);
+            return;
+        }
         const bool inherited = inherit.gives() && takes_material(*target);
         const Prototype& p = prototype(target, inherited);
         if (p.index) {

@@ -122,6 +122,30 @@ TEST_CASE("instances of meshes, triangles, spheres and boxes render byte for byt
     }
 }
 
+TEST_CASE("planes in an instanced group (a room with its floor) render like flat copies",
+          "[instances][e2e]") {
+    TempDir dir;
+    const std::vector<std::string> members = {
+        "plane { normal <0, 1, 0>  distance 0.5  material { texture checker { scale 0.5 } } }",
+        "plane { normal <0, 0, -1>  distance -3  {M} }",
+        "sphere { center <0, 1, 0>  radius 0.5  {M} }",
+    };
+    const PfmImage inst =
+        render(dir, "inst",
+               "let room = group {\n"
+               "  plane { normal <0, 1, 0>  distance 0.5  material { texture checker { scale 0.5 } } }\n"
+               "  plane { normal <0, 0, -1>  distance -3 }\n"
+               "  sphere { center <0, 1, 0>  radius 0.5 }\n"
+               "}\n"
+               "let rooms = group { object room { translate <1, 0, 0> } }\n"
+               "object rooms { rotate <0, 20, 0>  translate <-1, -0.5, 0>  material red }\n");
+    render(
+        dir, "flat",
+        flat_copies(members, {{"translate <1, 0, 0>  rotate <0, 20, 0>  translate <-1, -0.5, 0>", "red"}}));
+    CHECK(pixels_differing(inst, render(dir, "empty", ""), 1e-3f) > 100);
+    CHECK(read_file(dir / "inst.pfm") == read_file(dir / "flat.pfm"));
+}
+
 TEST_CASE("cylinders, cones, tori, discs and CSG in an instanced group agree with flat copies",
           "[instances][e2e]") {
     TempDir dir;
