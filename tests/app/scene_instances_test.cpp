@@ -122,6 +122,37 @@ TEST_CASE("instances of meshes, triangles, spheres and boxes render byte for byt
     }
 }
 
+TEST_CASE("a glass lens, textures and bumps under a spot light in instances agree with flat copies",
+          "[instances][e2e]") {
+    TempDir dir;
+    copy_torus(dir);
+    fs::copy_file(fs::path(WSD_SOURCE_DIR) / "examples/textures/earth.png", dir.path() / "earth.png");
+    const std::string defs =
+        "light spot { position <0, 6, -2>  look_at <0, 0, 0>  angle 20  falloff 35 }\n"
+        "let earth = material { texture image \"earth.png\"  bump perlin { kind wood  scale 5 }  "
+        "bump_strength 0.4 }\n";
+    const std::vector<std::string> members = {
+        "intersection { sphere { center <0, 0, -0.6>  radius 1 }  sphere { center <0, 0, 0.6>  radius 1 }  "
+        "material glass  translate <0, 0.8, 0> }",
+        "difference { box { min <-0.5, 0, 1>  max <0.5, 1, 2>  material earth }  "
+        "sphere { center <0, 1, 1.5>  radius 0.6  material blue } }",
+        "mesh { file \"torus.obj\"  scale 0.4  translate <1.2, 0.4, 0>  material earth }",
+    };
+    std::string group = "let thing = group {\n";
+    for (const std::string& m : members) group += "  " + m + "\n";
+    group += "}\n";
+    const std::string p = "rotate <0, 25, 0>  translate <1, 0, 0>",
+                      q = "rotate <20, -30, 0>  scale 0.8  translate <-1.5, 0, 1>";
+    const PfmImage inst =
+        render(dir, "inst", defs + group + "object thing { " + p + " }\nobject thing { " + q + " }\n");
+    const PfmImage flat = render(dir, "flat", defs + flat_copies(members, {{p, ""}, {q, ""}}));
+    CHECK(pixels_differing(inst, render(dir, "empty", defs), 1e-3f) > 100);
+    CHECK(pixels_differing(inst, flat, 1e-2f) <= 48 * 36 / 100);
+    // The top level walked without a tree renders the same image.
+    REQUIRE(run_wsd(dir, "render inst.wsd -o linear.pfm --no-bvh --quiet").status == 0);
+    CHECK(read_file(dir / "linear.pfm") == read_file(dir / "inst.pfm"));
+}
+
 TEST_CASE("planes in an instanced group (a room with its floor) render like flat copies",
           "[instances][e2e]") {
     TempDir dir;
