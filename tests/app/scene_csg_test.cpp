@@ -67,6 +67,10 @@ TEST_CASE("a glass CSG without inner surfaces renders as the one sphere it equal
         render(dir, name, scene + "\n");
         CHECK(read_file(dir / (name + ".pfm")) == read_file(dir / "one.pfm"));
     }
+    // The statistics count the member spheres that rays meet, not only those they test.
+    const std::string stats = read_file(dir / "coincident.json");
+    CHECK(stats.find("\"sphere_tests\": 0,") == std::string::npos);
+    CHECK(stats.find("\"sphere_hits\": 0,") == std::string::npos);
     // The comparison sees an inner surface: two spheres written apart are not one solid.
     write_file(dir / "two.wsd",
                std::string(kHead) + ("sphere { center <0, 0.5, 0>  radius 1  material glass }\n"
