@@ -2,6 +2,7 @@
 // one sphere it equals, byte for byte; cut surfaces show the subtracting member's material (its
 // own, else the CSG's); a plane member is a half-space; a closed mesh member (split at uv seams)
 // agrees with the analytic shape; members that are not solids are refused with the reason.
+#include <array>
 #include <catch2/catch.hpp>
 #include <filesystem>
 
@@ -168,5 +169,31 @@ TEST_CASE("an open or inconsistently oriented mesh in a CSG is refused with the 
         CHECK_THAT(r.err, Catch::Contains(std::string("(") + file + ".obj line 5)"));
         CHECK_THAT(r.err, Catch::Contains(std::string(file) == "open" ? "belongs to no other face"
                                                                       : "not consistently oriented"));
+    }
+}
+
+TEST_CASE("a CSG's solid does not depend on member order or on how subtracted members are grouped",
+          "[csg][e2e]") {
+    TempDir dir;
+    const std::string a = "sphere { center <-0.4, 0.5, 0>  radius 0.8 }";
+    const std::string b = "sphere { center <0.4, 0.6, 0.1>  radius 0.7 }";
+    const std::string c = "cylinder { base <0, -2, 0>  cap <0, 2, 0>  radius 0.3 }";
+    const std::string d = "box { min <-1, 0, -1>  max <1, 1.2, 1> }";
+    const std::vector<std::array<std::string, 2>> same = {
+        {"union { " + a + "  " + b + "  material glass }", "union { " + b + "  " + a + "  material glass }"},
+        {"intersection { " + a + "  " + b + "  material glass }",
+         "intersection { " + b + "  " + a + "  material glass }"},
+        {"difference { " + d + "  " + a + "  " + c + "  material glass }",
+         "difference { " + d + "  union { " + a + "  " + c + " }  material glass }"},
+        {"difference { " + d + "  " + a + "  " + c + "  material red }",
+         "difference { " + d + "  union { " + a + "  " + c + " }  material red }"},
+    };
+    const PfmImage empty = render(dir, "empty", "");
+    for (const auto& [first, second] : same) {
+        INFO(first);
+        const PfmImage one = render(dir, "one", first + "\n");
+        render(dir, "two", second + "\n");
+        CHECK(pixels_differing(one, empty, 1e-3f) > 30);
+        CHECK(read_file(dir / "one.pfm") == read_file(dir / "two.pfm"));
     }
 }
