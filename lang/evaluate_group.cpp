@@ -220,13 +220,18 @@ void Interpreter::deliver(const ObjectPtr& value, Span added_by) {
         members_->push_back(value);
         return;
     }
-    scene_.add_object_value(value, added_by, diags_);
-    if (scene_.primitives() > limits_.primitives) {
+    // Refused before it is made when its instances alone cross a limit (a recursion builds
+    // exponentially many in a few steps).
+    SceneBuilder::Expansion grows = scene_.expansion(value);
+    grows += {scene_.instances(), scene_.primitives()};
+    if (grows.instances <= limits_.instances && grows.copies <= limits_.primitives)
+        scene_.add_object_value(value, added_by, diags_);
+    if (scene_.primitives() > limits_.primitives || grows.copies > limits_.primitives) {
         diags_.error(added_by, "the scene has more than " + std::to_string(limits_.primitives) +
                                    " primitives (the limit; a mesh counts its triangles, stored once per "
                                    "distinct value)");
         abort();
-    } else if (scene_.instances() > limits_.instances) {
+    } else if (scene_.instances() > limits_.instances || grows.instances > limits_.instances) {
         diags_.error(added_by, "the scene has more than " + std::to_string(limits_.instances) +
                                    " instances (the limit)");
         abort();

@@ -61,7 +61,78 @@ public:
         walk(value, render::Mat4(1.0), Inherit{}, Out{&b_.scene_.spec.shapes, nullptr});
     }
 
+    // What adding `value` to the world makes beyond what its evaluation counted: instance shapes,
+    // and planes copied once per instance. Found from the value graph before any is made, since a
+    // recursive function builds in a few steps a value whose instances outnumber memory.
+    SceneBuilder::Expansion expansion(const ObjectPtr& value) {
+        switch (value->kind) {
+            case ObjectKind::Leaf:
+            case ObjectKind::Csg:
+                return {};
+            case ObjectKind::Group: {
+                SceneBuilder::Expansion e;
+                for (const ObjectPtr& m : value->members) e += expansion(m);
+                return e;
+            }
+            case ObjectKind::Instance:
+                break;
+        }
+        const ObjectPtr& t = unwrap(value);
+        if (t->kind == ObjectKind::Csg || (t->kind == ObjectKind::Leaf && !t->is_mesh())) return {};
+        return instanced(t);
+    }
+
 private:
+    static const ObjectPtr& unwrap(const ObjectPtr& v) {
+        const ObjectPtr* t = &v;
+        while ((*t)->kind == ObjectKind::Instance) t = &(*t)->target;
+        return *t;
+    }
+    static bool is_plane(const ObjectValue& v) {
+        return v.kind == ObjectKind::Leaf && v.leaf->shape.kind == render::ShapeKind::Plane;
+    }
+
+    // Instances of a group or mesh `t` placed once: its prototype's, and its nested ones.
+    SceneBuilder::Expansion instanced(const ObjectPtr& t) {
+        if (t->is_mesh()) return {1, 0};
+        if (auto it = expansions_.find(t.get()); it != expansions_.end()) return it->second;
+        SceneBuilder::Expansion e = nested(*t);
+        if (has_geometry(*t)) e += {1, 0};
+        kept_.push_back(t);
+        expansions_.emplace(t.get(), e);
+        return e;
+    }
+    // What the members of group `g` add per instance of it outside its prototype.
+    SceneBuilder::Expansion nested(const ObjectValue& g) {
+        SceneBuilder::Expansion e;
+        for (const ObjectPtr& m : g.members) {
+            if (m->kind == ObjectKind::Group) {
+                e += nested(*m);
+            } else if (m->kind == ObjectKind::Instance) {
+                const ObjectPtr& u = unwrap(m);
+                if (is_plane(*u))
+                    e += {0, 1};
+                else if (u->kind != ObjectKind::Csg && !(u->kind == ObjectKind::Leaf && !u->is_mesh()))
+                    e += instanced(u);
+            } else if (is_plane(*m)) {
+                e += {0, 1};
+            }
+        }
+        return e;
+    }
+    // Whether group `g`'s prototype holds a shape (else only its nested instances are placed).
+    static bool has_geometry(const ObjectValue& g) {
+        for (const ObjectPtr& m : g.members) {
+            const ObjectValue& u = *unwrap(m);
+            if (m->kind == ObjectKind::Group
+                    ? has_geometry(*m)
+                    : u.kind == ObjectKind::Csg || (u.kind == ObjectKind::Leaf && !is_plane(u) &&
+                                                    (m->kind == ObjectKind::Leaf || !u.is_mesh())))
+                return true;
+        }
+        return false;
+    }
+
     struct Prototype {
         std::optional<uint32_t> index;  // none: the value has no geometry outside nested instances
         std::vector<SubInstance> subs;
@@ -301,6 +372,7 @@ private:
     std::map<Key, Csg> csgs_;
     std::vector<ObjectPtr> kept_;
     std::unordered_map<const ObjectValue*, bool> takes_material_;  // of values kept alive in kept_
+    std::unordered_map<const ObjectValue*, SceneBuilder::Expansion> expansions_;  // likewise
     std::unordered_set<const ObjectValue*> reported_;
 };
 
@@ -321,6 +393,11 @@ void SceneBuilder::drop_object_caches() {
 void SceneBuilder::add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags) {
     if (!objects_) objects_ = std::make_unique<ObjectLowering>(*this);
     objects_->add(value, added_by, diags);
+}
+
+SceneBuilder::Expansion SceneBuilder::expansion(const ObjectPtr& value) {
+    if (!objects_) objects_ = std::make_unique<ObjectLowering>(*this);
+    return objects_->expansion(value);
 }
 
 const char* shape_word(render::ShapeKind kind) {
