@@ -102,6 +102,7 @@ ObjectPtr Interpreter::leaf_value(const ObjectStmt& stmt) {
     value->triangles = object->is_triangle                             ? 1
                        : object->shape.kind == render::ShapeKind::Mesh ? object->primitives
                                                                        : 0;
+    value->solid_primitives = object->primitives;
     value->leaf = std::move(object);
     return value;
 }
@@ -150,6 +151,19 @@ ObjectPtr Interpreter::group_value(const GroupStmt& stmt) {
     if (!check_depth(*value)) return nullptr;
     if (value->kind == ObjectKind::Csg) {
         value->objects = 1;  // one solid
+        for (const ObjectPtr& m : value->members)
+            value->solid_primitives = value->solid_primitives > SIZE_MAX - m->solid_primitives
+                                          ? SIZE_MAX
+                                          : value->solid_primitives + m->solid_primitives;
+        // Its members are copied into it: a recursion doubling a CSG would outgrow memory.
+        if (value->solid_primitives > limits_.primitives) {
+            diags_.error(stmt.keyword,
+                         "this '" + std::string(word) + "' has more than " +
+                             std::to_string(limits_.primitives) +
+                             " primitives (the limit; nested CSG and instances in it are copies)");
+            abort();
+            return nullptr;
+        }
         if (!check_csg_members(*value, word)) return nullptr;
     }
     return value;
@@ -210,6 +224,7 @@ ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     value->transform = compose_transforms(items.transforms());
     value->objects = value->target->objects;
     value->triangles = value->target->triangles;
+    value->solid_primitives = value->target->solid_primitives;
     value->depth = value->target->depth + 1;
     if (!check_depth(*value)) return nullptr;
     return value;

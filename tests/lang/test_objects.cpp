@@ -410,3 +410,22 @@ TEST_CASE("instances that a recursion multiplies are refused before any is made"
     CHECK(huge->errors() ==
           std::vector<std::string>{"11:1: the scene has more than 1000 instances (the limit)"});
 }
+
+TEST_CASE("a CSG that a recursion doubles is refused at the primitive limit, before it is copied",
+          "[objects]") {
+    Limits limits;
+    limits.primitives = 1000;
+    const std::string doubling =
+        "let ball = sphere { center <0, 0, 0>  radius 1 }\n"
+        "fn f(d) {\n"
+        "    if d == 0 { return ball }\n"
+        "    let c = f(d - 1)\n"
+        "    return union { object c { }  object c { translate <0.1, 0, 0> } }\n"
+        "}\n";
+    CHECK(evaluate_text(kHead + doubling + "object f(9) { material red }\n", limits)->errors().empty());
+    auto over = evaluate_text(kHead + doubling + "object f(60) { material red }\n", limits);
+    REQUIRE(over->errors().size() == 1);
+    CHECK(over->errors()[0] ==
+          "9:12: this 'union' has more than 1000 primitives (the limit; nested CSG and instances in it are "
+          "copies)");
+}
