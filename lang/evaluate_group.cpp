@@ -3,37 +3,14 @@
 // scopes whose object statements add members, `object EXPR { ... }` instances, the solid check of
 // CSG members, and delivery of a value where objects go (the body being evaluated, or the scene).
 #include <algorithm>
-#include <unordered_map>
 
 #include "lang/interpreter.h"
 #include "lang/object_value.h"
+#include "render/mesh_topology.h"
 
 namespace wsd::lang {
 
 namespace {
-
-// Why a mesh does not bound a solid, or nothing: every edge must be shared by exactly two faces
-// that run along it in opposite directions (consistently oriented).
-std::optional<std::string> mesh_closedness_problem(const render::MeshData& mesh) {
-    std::unordered_map<uint64_t, uint32_t> directed;  // edge a→b: how many faces run along it
-    directed.reserve(mesh.faces.size() * 3);
-    auto key = [](uint32_t a, uint32_t b) { return (uint64_t{a} << 32) | b; };
-    for (const glm::uvec3& f : mesh.faces)
-        for (int i = 0; i < 3; ++i) ++directed[key(f[i], f[(i + 1) % 3])];
-    // In face order, so that the edge named is the same on every machine.
-    for (const glm::uvec3& f : mesh.faces) {
-        for (int i = 0; i < 3; ++i) {
-            const uint32_t a = f[i], b = f[(i + 1) % 3];
-            const std::string name =
-                "the edge between vertices " + std::to_string(a) + " and " + std::to_string(b);
-            if (const uint32_t count = directed[key(a, b)]; count > 1)
-                return name + " is run along the same way by " + std::to_string(count) + " faces";
-            if (directed.find(key(b, a)) == directed.end())
-                return name + " belongs to only one face (the mesh has a hole)";
-        }
-    }
-    return std::nullopt;
-}
 
 // Why a CSG member is not a solid ("'disc'"), with a help line when there is more to say.
 std::optional<std::string> not_solid(const ObjectValue& v, std::string& help) {
@@ -59,8 +36,8 @@ std::optional<std::string> not_solid(const ObjectValue& v, std::string& help) {
             return std::nullopt;
         case render::ShapeKind::Mesh:
             if (s.mesh)
-                if (auto problem = mesh_closedness_problem(*s.mesh)) {
-                    help = "it is not closed: " + *problem;
+                if (auto problem = render::closed_mesh_problem(*s.mesh)) {
+                    help = *problem;
                     return std::string("'mesh'");
                 }
             return std::nullopt;
@@ -125,6 +102,7 @@ ObjectPtr Interpreter::leaf_value(const ObjectStmt& stmt) {
     value->triangles = object->is_triangle                             ? 1
                        : object->shape.kind == render::ShapeKind::Mesh ? object->primitives
                                                                        : 0;
+    value->solid_primitives = object->primitives;
     value->leaf = std::move(object);
     return value;
 }
@@ -173,6 +151,19 @@ ObjectPtr Interpreter::group_value(const GroupStmt& stmt) {
     if (!check_depth(*value)) return nullptr;
     if (value->kind == ObjectKind::Csg) {
         value->objects = 1;  // one solid
+        for (const ObjectPtr& m : value->members)
+            value->solid_primitives = value->solid_primitives > SIZE_MAX - m->solid_primitives
+                                          ? SIZE_MAX
+                                          : value->solid_primitives + m->solid_primitives;
+        // Its members are copied into it: a recursion doubling a CSG would outgrow memory.
+        if (value->solid_primitives > limits_.primitives) {
+            diags_.error(stmt.keyword,
+                         "this '" + std::string(word) + "' has more than " +
+                             std::to_string(limits_.primitives) +
+                             " primitives (the limit; nested CSG and instances in it are copies)");
+            abort();
+            return nullptr;
+        }
         if (!check_csg_members(*value, word)) return nullptr;
     }
     return value;
@@ -233,6 +224,7 @@ ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     value->transform = compose_transforms(items.transforms());
     value->objects = value->target->objects;
     value->triangles = value->target->triangles;
+    value->solid_primitives = value->target->solid_primitives;
     value->depth = value->target->depth + 1;
     if (!check_depth(*value)) return nullptr;
     return value;
@@ -243,13 +235,18 @@ void Interpreter::deliver(const ObjectPtr& value, Span added_by) {
         members_->push_back(value);
         return;
     }
-    scene_.add_object_value(value, added_by, diags_);
-    if (scene_.primitives() > limits_.primitives) {
+    // Refused before it is made when its instances alone cross a limit (a recursion builds
+    // exponentially many in a few steps).
+    SceneBuilder::Expansion grows = scene_.expansion(value);
+    grows += {scene_.instances(), scene_.primitives()};
+    if (grows.instances <= limits_.instances && grows.copies <= limits_.primitives)
+        scene_.add_object_value(value, added_by, diags_);
+    if (scene_.primitives() > limits_.primitives || grows.copies > limits_.primitives) {
         diags_.error(added_by, "the scene has more than " + std::to_string(limits_.primitives) +
                                    " primitives (the limit; a mesh counts its triangles, stored once per "
                                    "distinct value)");
         abort();
-    } else if (scene_.instances() > limits_.instances) {
+    } else if (scene_.instances() > limits_.instances || grows.instances > limits_.instances) {
         diags_.error(added_by, "the scene has more than " + std::to_string(limits_.instances) +
                                    " instances (the limit)");
         abort();

@@ -6,6 +6,7 @@
 // hands it here.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -151,6 +152,17 @@ public:
     // mesh adds instances of one prototype per distinct value, CSG becomes one solid. A surface with
     // no material at all is an error at its object's keyword, with a note at `added_by`.
     void add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags);
+    // What add_object_value would add beyond the value's own evaluation, counted without making it:
+    // instance shapes and planes copied per instance (each sum saturates at SIZE_MAX).
+    struct Expansion {
+        size_t instances = 0, copies = 0;
+        Expansion& operator+=(const Expansion& o) {
+            instances = instances > SIZE_MAX - o.instances ? SIZE_MAX : instances + o.instances;
+            copies = copies > SIZE_MAX - o.copies ? SIZE_MAX : copies + o.copies;
+            return *this;
+        }
+    };
+    Expansion expansion(const ObjectPtr& value);
     size_t primitives() const { return primitives_; }  // stored primitives (distinct geometry)
     size_t instances() const { return instances_; }
     const render::SceneSpec& spec() const { return scene_.spec; }

@@ -1,7 +1,8 @@
 // Object values into the render spec: a group added as a statement is flattened into world shapes
 // (each member's transforms first, then the group's), `object` of a group or a mesh adds Instance
 // shapes of one prototype per distinct value (and per material variant), a single primitive or a
-// CSG added by `object` is copied (it is no more than its one shape), and a CSG becomes one Csg
+// CSG added by `object` is copied (it is no more than its one shape), so is a plane in an instanced
+// group (it has no bounds for the prototype's tree), and a CSG becomes one Csg
 // shape whose members are in its own frame. Prototypes never contain instances: an `object` inside
 // an instanced group becomes an instance of its own at the top level, with composed transforms.
 //
@@ -33,8 +34,8 @@ Inherit own_or(const ObjectValue& v, const Inherit& outer) {
 
 // An `object` nested in an instanced group: placed again wherever that group is placed.
 struct SubInstance {
-    ObjectPtr instance;  // the `object` that adds it (where its instances are reported)
-    ObjectPtr target;    // a group or a mesh
+    ObjectPtr instance;  // the `object` that adds it (where its instances are reported), or the plane
+    ObjectPtr target;    // a group, a mesh, or a plane (copied per instance)
     render::Mat4 transform;
     Inherit inherit;  // Container: the enclosing instance's material
 };
@@ -60,7 +61,78 @@ public:
         walk(value, render::Mat4(1.0), Inherit{}, Out{&b_.scene_.spec.shapes, nullptr});
     }
 
+    // What adding `value` to the world makes beyond what its evaluation counted: instance shapes,
+    // and planes copied once per instance. Found from the value graph before any is made, since a
+    // recursive function builds in a few steps a value whose instances outnumber memory.
+    SceneBuilder::Expansion expansion(const ObjectPtr& value) {
+        switch (value->kind) {
+            case ObjectKind::Leaf:
+            case ObjectKind::Csg:
+                return {};
+            case ObjectKind::Group: {
+                SceneBuilder::Expansion e;
+                for (const ObjectPtr& m : value->members) e += expansion(m);
+                return e;
+            }
+            case ObjectKind::Instance:
+                break;
+        }
+        const ObjectPtr& t = unwrap(value);
+        if (t->kind == ObjectKind::Csg || (t->kind == ObjectKind::Leaf && !t->is_mesh())) return {};
+        return instanced(t);
+    }
+
 private:
+    static const ObjectPtr& unwrap(const ObjectPtr& v) {
+        const ObjectPtr* t = &v;
+        while ((*t)->kind == ObjectKind::Instance) t = &(*t)->target;
+        return *t;
+    }
+    static bool is_plane(const ObjectValue& v) {
+        return v.kind == ObjectKind::Leaf && v.leaf->shape.kind == render::ShapeKind::Plane;
+    }
+
+    // Instances of a group or mesh `t` placed once: its prototype's, and its nested ones.
+    SceneBuilder::Expansion instanced(const ObjectPtr& t) {
+        if (t->is_mesh()) return {1, 0};
+        if (auto it = expansions_.find(t.get()); it != expansions_.end()) return it->second;
+        SceneBuilder::Expansion e = nested(*t);
+        if (has_geometry(*t)) e += {1, 0};
+        kept_.push_back(t);
+        expansions_.emplace(t.get(), e);
+        return e;
+    }
+    // What the members of group `g` add per instance of it outside its prototype.
+    SceneBuilder::Expansion nested(const ObjectValue& g) {
+        SceneBuilder::Expansion e;
+        for (const ObjectPtr& m : g.members) {
+            if (m->kind == ObjectKind::Group) {
+                e += nested(*m);
+            } else if (m->kind == ObjectKind::Instance) {
+                const ObjectPtr& u = unwrap(m);
+                if (is_plane(*u))
+                    e += {0, 1};
+                else if (u->kind != ObjectKind::Csg && !(u->kind == ObjectKind::Leaf && !u->is_mesh()))
+                    e += instanced(u);
+            } else if (is_plane(*m)) {
+                e += {0, 1};
+            }
+        }
+        return e;
+    }
+    // Whether group `g`'s prototype holds a shape (else only its nested instances are placed).
+    static bool has_geometry(const ObjectValue& g) {
+        for (const ObjectPtr& m : g.members) {
+            const ObjectValue& u = *unwrap(m);
+            if (m->kind == ObjectKind::Group
+                    ? has_geometry(*m)
+                    : u.kind == ObjectKind::Csg || (u.kind == ObjectKind::Leaf && !is_plane(u) &&
+                                                    (m->kind == ObjectKind::Leaf || !u.is_mesh())))
+                return true;
+        }
+        return false;
+    }
+
     struct Prototype {
         std::optional<uint32_t> index;  // none: the value has no geometry outside nested instances
         std::vector<SubInstance> subs;
@@ -74,6 +146,11 @@ private:
     void walk(const ObjectPtr& v, const render::Mat4& m, const Inherit& inherit, Out out) {
         switch (v->kind) {
             case ObjectKind::Leaf:
+                if (out.subs && v->leaf->shape.kind == render::ShapeKind::Plane) {
+                    // A plane has no bounds for a prototype's tree: each instance adds a copy.
+                    out.subs->push_back({v, v, m, inherit});
+                    return;
+                }
                 emit_leaf(*v, m, inherit, *out.shapes);
                 return;
             case ObjectKind::Group: {
@@ -113,6 +190,10 @@ private:
     // Instances of `target` (a group or a mesh) in the world: its prototype, and its nested ones.
     void instantiate(const ObjectValue& instance, const ObjectPtr& target, const render::Mat4& m,
                      const Inherit& inherit) {
+        if (target->kind == ObjectKind::Leaf && !target->is_mesh()) {  // a plane of an instanced group
+            emit_leaf(*target, m, inherit, b_.scene_.spec.shapes);
+            return;
+        }
         const bool inherited = inherit.gives() && takes_material(*target);
         const Prototype& p = prototype(target, inherited);
         if (p.index) {
@@ -291,6 +372,7 @@ private:
     std::map<Key, Csg> csgs_;
     std::vector<ObjectPtr> kept_;
     std::unordered_map<const ObjectValue*, bool> takes_material_;  // of values kept alive in kept_
+    std::unordered_map<const ObjectValue*, SceneBuilder::Expansion> expansions_;  // likewise
     std::unordered_set<const ObjectValue*> reported_;
 };
 
@@ -311,6 +393,11 @@ void SceneBuilder::drop_object_caches() {
 void SceneBuilder::add_object_value(const ObjectPtr& value, Span added_by, Diagnostics& diags) {
     if (!objects_) objects_ = std::make_unique<ObjectLowering>(*this);
     objects_->add(value, added_by, diags);
+}
+
+SceneBuilder::Expansion SceneBuilder::expansion(const ObjectPtr& value) {
+    if (!objects_) objects_ = std::make_unique<ObjectLowering>(*this);
+    return objects_->expansion(value);
 }
 
 const char* shape_word(render::ShapeKind kind) {

@@ -46,6 +46,8 @@ struct ObjectValue {
     render::Mat4 transform{1.0};  // group, CSG, instance: their own transforms, composed
     // Counted as `wsd check` counts (as instanced): leaf objects and triangles.
     size_t objects = 0, triangles = 0;
+    // The primitives a CSG made of this value stores (nested CSG and instances expanded), saturating.
+    size_t solid_primitives = 0;
     int depth = 1;  // levels of groups, CSG and instances down to its deepest leaf
 
     bool is_mesh() const { return kind == ObjectKind::Leaf && leaf->shape.kind == render::ShapeKind::Mesh; }

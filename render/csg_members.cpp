@@ -324,9 +324,13 @@ int member_crossings(const CsgMember& m, uint32_t index, const RayPre& r, std::v
         if (!Line(r).meets(m.wlo, m.whi)) return 0;
     }
     switch (m.kind) {
-        case CsgMemberKind::Sphere:
+        case CsgMemberKind::Sphere: {
             ++c.sph_tests;
-            return sphere_crossings(m, index, to_local(m, r), out);
+            const size_t before = out.size();
+            const int inside = sphere_crossings(m, index, to_local(m, r), out);
+            c.sph_hits += out.size() > before ? 1 : 0;  // as a mesh member counts the triangles it crosses
+            return inside;
+        }
         case CsgMemberKind::Box:
             ++c.shape_boxes;
             return box_crossings(m, index, to_local(m, r), out);

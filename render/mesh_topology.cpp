@@ -34,12 +34,14 @@ struct Edge {
 std::optional<std::string> closed_mesh_problem(const MeshData& m) {
     if (m.faces.empty()) return "the mesh has no faces, so it encloses no volume";
     const size_t nv = m.vertices.size();
-    // Weld: vertices with bit-identical positions are one vertex.
+    // Weld: vertices at the same position are one vertex; adding +0 makes -0 and +0 one key, since
+    // an OBJ writer's seam often prints the same point once as 0 and once as -0.
     std::map<std::tuple<uint32_t, uint32_t, uint32_t>, uint32_t> ids;
     std::vector<uint32_t> weld(nv);
     for (size_t i = 0; i < nv; ++i) {
+        const glm::vec3 p = m.vertices[i] + glm::vec3(0.0f);
         uint32_t bits[3];
-        std::memcpy(bits, &m.vertices[i], sizeof bits);
+        std::memcpy(bits, &p, sizeof bits);
         weld[i] = ids.emplace(std::make_tuple(bits[0], bits[1], bits[2]), uint32_t(ids.size())).first->second;
     }
     std::vector<Edge> edges;

@@ -386,3 +386,46 @@ TEST_CASE("an object of a closed mesh in a CSG is a member copy, not an instance
     CHECK(l->scene->summary.triangles == 4);
     CHECK(l->scene->summary.stored_triangles == 4);
 }
+
+TEST_CASE("instances that a recursion multiplies are refused before any is made", "[objects]") {
+    Limits limits;
+    limits.instances = 1000;
+    const std::string fractal =
+        "let ball = sphere { center <0, 0, 0>  radius 1 }\n"
+        "fn f(d) {\n"
+        "    if d == 0 { return ball }\n"
+        "    let c = f(d - 1)\n"
+        "    return group { object c { }  object c { translate <1, 0, 0> }  object c { translate <2, 0, 0> } "
+        "}\n"
+        "}\n";
+    auto ok = evaluate_text(kHead + fractal + "object f(7) { material red }\n", limits);  // 3^6 instances
+    CHECK(ok->errors().empty());
+    CHECK(ok->scene.summary.instances == 729);
+    auto over = evaluate_text(kHead + fractal + "object f(8) { material red }\n", limits);  // 3^7
+    CHECK(over->errors() ==
+          std::vector<std::string>{"11:1: the scene has more than 1000 instances (the limit)"});
+    CHECK(over->scene.summary.instances == 0);
+    // 3^59 instances: counted without making them (a saturating count), so this ends at once.
+    auto huge = evaluate_text(kHead + fractal + "object f(60) { material red }\n", limits);
+    CHECK(huge->errors() ==
+          std::vector<std::string>{"11:1: the scene has more than 1000 instances (the limit)"});
+}
+
+TEST_CASE("a CSG that a recursion doubles is refused at the primitive limit, before it is copied",
+          "[objects]") {
+    Limits limits;
+    limits.primitives = 1000;
+    const std::string doubling =
+        "let ball = sphere { center <0, 0, 0>  radius 1 }\n"
+        "fn f(d) {\n"
+        "    if d == 0 { return ball }\n"
+        "    let c = f(d - 1)\n"
+        "    return union { object c { }  object c { translate <0.1, 0, 0> } }\n"
+        "}\n";
+    CHECK(evaluate_text(kHead + doubling + "object f(9) { material red }\n", limits)->errors().empty());
+    auto over = evaluate_text(kHead + doubling + "object f(60) { material red }\n", limits);
+    REQUIRE(over->errors().size() == 1);
+    CHECK(over->errors()[0] ==
+          "9:12: this 'union' has more than 1000 primitives (the limit; nested CSG and instances in it are "
+          "copies)");
+}

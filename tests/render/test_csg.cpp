@@ -219,6 +219,14 @@ TEST_CASE("closed_mesh_problem: closed, open, inconsistently oriented, split at 
     p = closed_mesh_problem(*fan);
     REQUIRE(p);
     CHECK_THAT(*p, Catch::Contains("shared by 3 faces"));
+    // A seam written once as 0 and once as -0 (as OBJ writers print sin(2π)) is one position.
+    auto signed_zero = octahedron(1);
+    for (size_t i = 0; i < 2; ++i)  // two of the four faces at vertex 0 use the copy
+        for (int k = 0; k < 3; ++k)
+            if (signed_zero->faces[i][k] == 0) signed_zero->faces[i][k] = 6;
+    signed_zero->vertices.push_back(signed_zero->vertices[0] * glm::vec3(1, -1, -1));
+    REQUIRE(std::signbit(signed_zero->vertices.back().y));
+    CHECK(!closed_mesh_problem(*signed_zero));
 }
 
 TEST_CASE("CSG: members that are not solids, and unbounded solids, are errors", "[csg]") {
