@@ -9,8 +9,8 @@
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
-#include "app/image_files.h"
 #include "app/frames.h"
+#include "app/image_files.h"
 #include "lang/diagnostics.h"
 
 namespace wsd::app {

@@ -349,7 +349,8 @@ int run_render(const RenderArgs& args) {
     }
     RenderRun run;
     if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
-    return run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, run, tile, aovs, frame); });
+    return run_frames(plan,
+                      [&](const FrameJob& frame) { return render_frame(args, run, tile, aovs, frame); });
 }
 
 }  // namespace wsd::app

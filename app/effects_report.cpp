@@ -3,6 +3,7 @@
 // written (file:line:col of the keyword, or of an OBJ mesh's file name).
 #include "app/effects_report.h"
 
+#include "lang/object_value.h"
 #include "render/effects.h"
 
 namespace wsd::app {
@@ -11,37 +12,9 @@ namespace {
 
 constexpr size_t max_listed = 12;  // a 1000-sphere scene should not print 1000 names per effect
 
-const char* kind_name(render::ShapeKind kind) {
-    switch (kind) {
-        case render::ShapeKind::Sphere:
-            return "sphere";
-        case render::ShapeKind::Box:
-            return "box";
-        case render::ShapeKind::Triangle:
-            return "triangle";
-        case render::ShapeKind::Plane:
-            return "plane";
-        case render::ShapeKind::Mesh:
-            return "mesh";
-        case render::ShapeKind::Cylinder:
-            return "cylinder";
-        case render::ShapeKind::Cone:
-            return "cone";
-        case render::ShapeKind::Torus:
-            return "torus";
-        case render::ShapeKind::Disc:
-            return "disc";
-        case render::ShapeKind::Csg:
-            return "csg";
-        case render::ShapeKind::Instance:
-            return "object";
-    }
-    return "object";
-}
-
 // A CSG by its operation, as it is written.
 std::string shape_name(const render::ShapeSpec& s) {
-    if (s.kind != render::ShapeKind::Csg || !s.csg) return kind_name(s.kind);
+    if (s.kind != render::ShapeKind::Csg || !s.csg) return lang::shape_word(s.kind);
     switch (s.csg->op) {
         case render::CsgOp::Union:
             return "union";

@@ -179,48 +179,13 @@ int quadric_member_crossings(const CsgMember& m, uint32_t index, const Local& l,
 // determinant (negative: the line meets the face's front, where the winding is counter-clockwise).
 bool triangle_line(const RayPre& r, const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, double& t_out,
                    double& err_out, double& b1_out, double& b2_out, bool& front) {
-    const int kx = r.kx, ky = r.ky, kz = r.kz;
-    const float* a0 = glm::value_ptr(v0);
-    const float* a1 = glm::value_ptr(v1);
-    const float* a2 = glm::value_ptr(v2);
-    double p0z = static_cast<double>(a0[kz]) - r.oz;
-    double p1z = static_cast<double>(a1[kz]) - r.oz;
-    double p2z = static_cast<double>(a2[kz]) - r.oz;
-    double x0 = (static_cast<double>(a0[kx]) - r.ox) + opaque(r.sx * p0z);
-    double y0 = (static_cast<double>(a0[ky]) - r.oy) + opaque(r.sy * p0z);
-    double x1 = (static_cast<double>(a1[kx]) - r.ox) + opaque(r.sx * p1z);
-    double y1 = (static_cast<double>(a1[ky]) - r.oy) + opaque(r.sy * p1z);
-    double x2 = (static_cast<double>(a2[kx]) - r.ox) + opaque(r.sx * p2z);
-    double y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * p2z);
-    double e0 = opaque(x1 * y2) - opaque(y1 * x2);
-    double e1 = opaque(x2 * y0) - opaque(y2 * x0);
-    if (e0 == 0) [[unlikely]]
-        e0 = difference_of_products(x1, y2, y1, x2);
-    if (e1 == 0) [[unlikely]]
-        e1 = difference_of_products(x2, y0, y2, x0);
-    if ((e0 < 0 && e1 > 0) || (e0 > 0 && e1 < 0)) return false;
-    double e2 = opaque(x0 * y1) - opaque(y0 * x1);
-    if (e2 == 0) [[unlikely]]
-        e2 = difference_of_products(x0, y1, y0, x1);
-    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
-    const double det = e0 + e1 + e2;
-    if (det == 0) return false;
-    const double z0 = r.sz * p0z, z1 = r.sz * p1z, z2 = r.sz * p2z;
-    const double t = (e0 * z0 + e1 * z1 + e2 * z2) / det;
-    const double max_zt = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
-    const double max_pz = std::max({std::abs(p0z), std::abs(p1z), std::abs(p2z)});
-    const double max_xt = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
-    const double max_yt = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
-    const double delta_z = gamma(3) * max_zt;
-    const double delta_x = gamma(5) * (max_xt + max_pz);
-    const double delta_y = gamma(5) * (max_yt + max_pz);
-    const double delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-    const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
-    t_out = t;
-    err_out = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::abs(det);
-    b1_out = e1 / det;
-    b2_out = e2 / det;
-    front = det < 0;
+    TriangleEdges q;
+    if (!triangle_edges(r, v0, v1, v2, q)) return false;
+    t_out = q.t();
+    err_out = q.t_error();
+    b1_out = q.e1 / q.det;
+    b2_out = q.e2 / q.det;
+    front = q.det < 0;
     return true;
 }
 

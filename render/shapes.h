@@ -63,11 +63,34 @@ struct PlanePrim {
     uint32_t transmissive;
 };
 
-// Watertight ray/triangle test. Returns true for a hit with δt < t < limit (δt bounds the
-// rounding error of t, pbrt-v4), with barycentrics b1, b2 of v1 and v2.
-[[gnu::always_inline]] inline bool intersect_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
-                                                      const Vec3f& v2, double limit, double& t_out,
-                                                      double& b1_out, double& b2_out) {
+// The watertight test's common part (Woop–Benthin–Wald): the triangle in the ray's sheared
+// frame, its edge functions with exact signs, and the determinant. False when the ray's line
+// misses the triangle; t() and t_error() are its line parameter and that parameter's error bound.
+struct TriangleEdges {
+    double p0z, p1z, p2z;  // translated, before the shear of z
+    double x0, y0, x1, y1, x2, y2;
+    double e0, e1, e2, det;
+    double z0, z1, z2;
+
+    double t() const { return (e0 * z0 + e1 * z1 + e2 * z2) / det; }
+    // δt: conservative bound on the error of t (pbrt-v4 IntersectTriangle, with the shear error
+    // taken from the unsheared z so that unnormalised directions stay covered).
+    double t_error() const {
+        const double max_zt = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
+        const double max_pz = std::max({std::abs(p0z), std::abs(p1z), std::abs(p2z)});
+        const double max_xt = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
+        const double max_yt = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
+        const double delta_z = gamma(3) * max_zt;
+        const double delta_x = gamma(5) * (max_xt + max_pz);
+        const double delta_y = gamma(5) * (max_yt + max_pz);
+        const double delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+        const double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
+        return 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::abs(det);
+    }
+};
+
+[[gnu::always_inline]] inline bool triangle_edges(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
+                                                  const Vec3f& v2, TriangleEdges& q) {
     const int kx = r.kx, ky = r.ky, kz = r.kz;
     // Components through a pointer: glm's operator[] is a switch on the index.
     const float* a0 = glm::value_ptr(v0);
@@ -75,53 +98,50 @@ struct PlanePrim {
     const float* a2 = glm::value_ptr(v2);
     // Translate (exact float vertices, one double rounding each), permute, shear. Each vertex
     // is transformed by the same expressions in every triangle that shares it.
-    double p0z = static_cast<double>(a0[kz]) - r.oz;
-    double p1z = static_cast<double>(a1[kz]) - r.oz;
-    double p2z = static_cast<double>(a2[kz]) - r.oz;
-    double x0 = (static_cast<double>(a0[kx]) - r.ox) + opaque(r.sx * p0z);
-    double y0 = (static_cast<double>(a0[ky]) - r.oy) + opaque(r.sy * p0z);
-    double x1 = (static_cast<double>(a1[kx]) - r.ox) + opaque(r.sx * p1z);
-    double y1 = (static_cast<double>(a1[ky]) - r.oy) + opaque(r.sy * p1z);
-    double x2 = (static_cast<double>(a2[kx]) - r.ox) + opaque(r.sx * p2z);
-    double y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * p2z);
+    q.p0z = static_cast<double>(a0[kz]) - r.oz;
+    q.p1z = static_cast<double>(a1[kz]) - r.oz;
+    q.p2z = static_cast<double>(a2[kz]) - r.oz;
+    q.x0 = (static_cast<double>(a0[kx]) - r.ox) + opaque(r.sx * q.p0z);
+    q.y0 = (static_cast<double>(a0[ky]) - r.oy) + opaque(r.sy * q.p0z);
+    q.x1 = (static_cast<double>(a1[kx]) - r.ox) + opaque(r.sx * q.p1z);
+    q.y1 = (static_cast<double>(a1[ky]) - r.oy) + opaque(r.sy * q.p1z);
+    q.x2 = (static_cast<double>(a2[kx]) - r.ox) + opaque(r.sx * q.p2z);
+    q.y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * q.p2z);
 
     // Edge functions; e(p, q) == -e(q, p) bit for bit, so a shared edge splits rays exactly.
     // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
-    double e0 = opaque(x1 * y2) - opaque(y1 * x2);
-    double e1 = opaque(x2 * y0) - opaque(y2 * x0);
-    if (e0 == 0) [[unlikely]]
-        e0 = difference_of_products(x1, y2, y1, x2);
-    if (e1 == 0) [[unlikely]]
-        e1 = difference_of_products(x2, y0, y2, x0);
-    if ((e0 < 0 && e1 > 0) || (e0 > 0 && e1 < 0)) return false;
-    double e2 = opaque(x0 * y1) - opaque(y0 * x1);
-    if (e2 == 0) [[unlikely]]
-        e2 = difference_of_products(x0, y1, y0, x1);
-    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
-    double det = e0 + e1 + e2;
-    if (det == 0) return false;
+    q.e0 = opaque(q.x1 * q.y2) - opaque(q.y1 * q.x2);
+    q.e1 = opaque(q.x2 * q.y0) - opaque(q.y2 * q.x0);
+    if (q.e0 == 0) [[unlikely]]
+        q.e0 = difference_of_products(q.x1, q.y2, q.y1, q.x2);
+    if (q.e1 == 0) [[unlikely]]
+        q.e1 = difference_of_products(q.x2, q.y0, q.y2, q.x0);
+    if ((q.e0 < 0 && q.e1 > 0) || (q.e0 > 0 && q.e1 < 0)) return false;
+    q.e2 = opaque(q.x0 * q.y1) - opaque(q.y0 * q.x1);
+    if (q.e2 == 0) [[unlikely]]
+        q.e2 = difference_of_products(q.x0, q.y1, q.y0, q.x1);
+    if ((q.e0 < 0 || q.e1 < 0 || q.e2 < 0) && (q.e0 > 0 || q.e1 > 0 || q.e2 > 0)) return false;
+    q.det = q.e0 + q.e1 + q.e2;
+    if (q.det == 0) return false;
+    q.z0 = r.sz * q.p0z;
+    q.z1 = r.sz * q.p1z;
+    q.z2 = r.sz * q.p2z;
+    return true;
+}
 
-    double z0 = r.sz * p0z, z1 = r.sz * p1z, z2 = r.sz * p2z;
-    double t = (e0 * z0 + e1 * z1 + e2 * z2) / det;
+// Watertight ray/triangle test. Returns true for a hit with δt < t < limit (δt bounds the
+// rounding error of t, pbrt-v4), with barycentrics b1, b2 of v1 and v2.
+[[gnu::always_inline]] inline bool intersect_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
+                                                      const Vec3f& v2, double limit, double& t_out,
+                                                      double& b1_out, double& b2_out) {
+    TriangleEdges q;
+    if (!triangle_edges(r, v0, v1, v2, q)) return false;
+    const double t = q.t();
     if (!(t > 0 && t < limit)) return false;
-
-    // δt: conservative bound on the error of t (pbrt-v4 IntersectTriangle, with the shear
-    // error taken from the unsheared z so that unnormalised directions stay covered).
-    double max_zt = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
-    double max_pz = std::max({std::abs(p0z), std::abs(p1z), std::abs(p2z)});
-    double max_xt = std::max({std::abs(x0), std::abs(x1), std::abs(x2)});
-    double max_yt = std::max({std::abs(y0), std::abs(y1), std::abs(y2)});
-    double delta_z = gamma(3) * max_zt;
-    double delta_x = gamma(5) * (max_xt + max_pz);
-    double delta_y = gamma(5) * (max_yt + max_pz);
-    double delta_e = 2 * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
-    double max_e = std::max({std::abs(e0), std::abs(e1), std::abs(e2)});
-    double delta_t = 3 * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) / std::abs(det);
-    if (t <= delta_t) return false;
-
+    if (t <= q.t_error()) return false;
     t_out = t;
-    b1_out = e1 / det;
-    b2_out = e2 / det;
+    b1_out = q.e1 / q.det;
+    b2_out = q.e2 / q.det;
     return true;
 }
 
