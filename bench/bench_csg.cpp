@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/uv_sphere.h"
 #include "render/geometry.h"
 #include "render/math.h"
 #include "render/renderer.h"
@@ -62,31 +63,11 @@ ShapeSpec csg(CsgOp op, std::vector<ShapeSpec> members) {
     return s;
 }
 
-// Closed UV sphere of 2·slices·(stacks − 1) triangles.
+// Closed UV sphere of 2·slices·(stacks − 1) triangles, as a mesh shape.
 ShapeSpec uv_sphere(int slices, int stacks, float radius) {
-    auto m = std::make_shared<MeshData>();
-    m->vertices.push_back({0, radius, 0});
-    for (int i = 1; i < stacks; ++i)
-        for (int j = 0; j < slices; ++j) {
-            const double th = kPi * i / stacks, ph = 2 * kPi * j / slices;
-            m->vertices.push_back({static_cast<float>(radius * std::sin(th) * std::cos(ph)),
-                                   static_cast<float>(radius * std::cos(th)),
-                                   static_cast<float>(radius * std::sin(th) * std::sin(ph))});
-        }
-    m->vertices.push_back({0, -radius, 0});
-    auto ring = [slices](int i, int j) { return static_cast<unsigned>(1 + (i - 1) * slices + (j % slices)); };
-    const unsigned bottom = static_cast<unsigned>(m->vertices.size() - 1);
-    for (int j = 0; j < slices; ++j) m->faces.push_back({0u, ring(1, j + 1), ring(1, j)});
-    for (int i = 1; i < stacks - 1; ++i)
-        for (int j = 0; j < slices; ++j) {
-            m->faces.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
-            m->faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
-        }
-    for (int j = 0; j < slices; ++j)
-        m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
     ShapeSpec s;
     s.kind = ShapeKind::Mesh;
-    s.mesh = m;
+    s.mesh = wsd::bench::uv_sphere(slices, stacks, radius);
     return s;
 }
 

@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "bench/uv_sphere.h"
 #include "render/geometry.h"
 #include "render/math.h"
 
@@ -33,32 +34,7 @@ double wall_now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Closed UV sphere: 2·slices·(stacks−1) triangles sharing 2 + slices·(stacks−1) vertices.
-std::shared_ptr<MeshData> uv_sphere(int slices, int stacks, float radius) {
-    auto m = std::make_shared<MeshData>();
-    m->vertices.push_back({0, radius, 0});
-    for (int i = 1; i < stacks; ++i) {
-        double theta = kPi * i / stacks;
-        for (int j = 0; j < slices; ++j) {
-            double phi = 2 * kPi * j / slices;
-            m->vertices.push_back({static_cast<float>(radius * std::sin(theta) * std::cos(phi)),
-                                   static_cast<float>(radius * std::cos(theta)),
-                                   static_cast<float>(radius * std::sin(theta) * std::sin(phi))});
-        }
-    }
-    m->vertices.push_back({0, -radius, 0});
-    auto ring = [slices](int i, int j) { return static_cast<unsigned>(1 + (i - 1) * slices + (j % slices)); };
-    const unsigned bottom = static_cast<unsigned>(m->vertices.size() - 1);
-    for (int j = 0; j < slices; ++j) m->faces.push_back({0u, ring(1, j + 1), ring(1, j)});
-    for (int i = 1; i < stacks - 1; ++i)
-        for (int j = 0; j < slices; ++j) {
-            m->faces.push_back({ring(i, j), ring(i, j + 1), ring(i + 1, j + 1)});
-            m->faces.push_back({ring(i, j), ring(i + 1, j + 1), ring(i + 1, j)});
-        }
-    for (int j = 0; j < slices; ++j)
-        m->faces.push_back({bottom, ring(stacks - 1, j), ring(stacks - 1, j + 1)});
-    return m;
-}
+using wsd::bench::uv_sphere;
 
 struct Throughput {
     double primary = 0, shadow = 0;      // rays per CPU-second
