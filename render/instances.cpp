@@ -284,14 +284,11 @@ bool test_instance(const Impl& g, const InstancePrim& q, const RayPre& r, double
     }
     c.boxes += 4 * visits;
     if (!best.hit) return false;
-    h.t = best.t;
+    // The inner hit, seen from the top level: the instance's id, the member's in inner_*.
+    h = best.h;
     h.prim = q.prim;
-    h.b1 = best.b1;
-    h.b2 = best.b2;
-    h.inner_prim = best.prim;
-    h.inner_slot = best.slot;
-    h.member = best.member;
-    h.member_slot = best.member_slot;
+    h.inner_prim = best.h.prim;
+    h.inner_slot = best.h.slot;
     return true;
 }
 

@@ -33,45 +33,30 @@ struct Counters {
 // next double above it, so that an exact tie can still be resolved by primitive id.
 struct Best {
     double limit;
-    double t = std::numeric_limits<double>::infinity();
-    uint32_t prim = 0xffffffffu, slot = 0;
-    double b1 = 0, b2 = 0;
-    uint32_t member = 0, member_slot = 0, inner_prim = 0, inner_slot = 0;
+    HitRecord h{std::numeric_limits<double>::infinity(), 0xffffffffu};  // valid when `hit`
     bool hit = false;
 
     void offer(double t_new, uint32_t prim_new, uint32_t slot_new, double b1_new, double b2_new) {
-        if (t_new < t || prim_new < prim) {
-            t = t_new, prim = prim_new, slot = slot_new, b1 = b1_new, b2 = b2_new;
-            member = member_slot = inner_prim = inner_slot = 0;
+        if (t_new < h.t || prim_new < h.prim) {
+            h = HitRecord{t_new, prim_new, slot_new, b1_new, b2_new};
             hit = true;
-            limit = next_float_up(t);
+            limit = next_float_up(h.t);
         }
     }
     // A hit from test_entry, at entry slot `slot_new`.
     // An instance's entries share its id: a tie between them goes to the lower inner id.
-    void offer(const HitRecord& h, uint32_t slot_new) {
-        if (h.t < t || h.prim < prim || (h.prim == prim && h.inner_prim < inner_prim)) {
-            t = h.t, prim = h.prim, slot = slot_new, b1 = h.b1, b2 = h.b2;
-            member = h.member, member_slot = h.member_slot, inner_prim = h.inner_prim,
-            inner_slot = h.inner_slot;
+    void offer(const HitRecord& x, uint32_t slot_new) {
+        if (x.t < h.t || x.prim < h.prim || (x.prim == h.prim && x.inner_prim < h.inner_prim)) {
+            h = x;
+            h.slot = slot_new;
             hit = true;
-            limit = next_float_up(t);
+            limit = next_float_up(h.t);
         }
     }
 
     // The hit as a query returns it, or nullopt.
     std::optional<HitRecord> record() const {
         if (!hit) return std::nullopt;
-        HitRecord h;
-        h.t = t;
-        h.prim = prim;
-        h.slot = slot;
-        h.b1 = b1;
-        h.b2 = b2;
-        h.member = member;
-        h.member_slot = member_slot;
-        h.inner_prim = inner_prim;
-        h.inner_slot = inner_slot;
         return h;
     }
 };
