@@ -1,11 +1,11 @@
-// Mesh lowering: `file "x.obj"` through render::load_obj (each file read once per scene), or inline
-// `vertices`/`faces`/`uvs`/`normals`. Packed lists are converted straight from the parser's
+// Mesh lowering: `file "x.obj"` or `"x.ply"` through render::load_mesh_file (each file read once per scene),
+// or inline `vertices`/`faces`/`uvs`/`normals`. Packed lists are converted straight from the parser's
 // storage; a bad face is reported at its own literal, naming the face.
 #include <cfloat>
 #include <cmath>
 
 #include "lang/lower.h"
-#include "render/obj.h"
+#include "render/mesh_file.h"
 
 namespace wsd::lang {
 
@@ -181,7 +181,7 @@ bool lower_file(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         if (it != ctx.obj_cache->end()) mesh = it->second;
     }
     if (!mesh) {
-        render::ObjResult result = render::load_obj(path);
+        render::MeshFileResult result = render::load_mesh_file(path);
         for (const std::string& note : result.notes) ctx.diags.warning(at, note);
         if (!result.mesh) {
             r.fail(at, result.error.empty() ? "cannot read mesh file '" + path + "'" : result.error);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "render/geometry_impl.h"
+#include "render/mesh_file.h"
 #include "render/other_prims.h"
 
 namespace wsd::render {
@@ -76,17 +77,6 @@ struct Builder {
 Bounds3f padded(const Vec3& lo, const Vec3& hi) {
     Vec3 pad = gamma(8) * (abs3(lo) + abs3(hi) + (hi - lo));
     return Bounds3f::around(lo - pad, hi + pad);
-}
-
-std::string face_name(const MeshData& m, size_t face) {
-    std::string s = "face " + std::to_string(face);
-    if (face < m.face_lines.size()) {
-        if (!m.source_name.empty())
-            s += " (" + m.source_name + " line " + std::to_string(m.face_lines[face]) + ")";
-        else
-            s += " (element " + std::to_string(m.face_lines[face]) + ")";
-    }
-    return s;
 }
 
 void Builder::sphere(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool trans) {

@@ -7,20 +7,11 @@
 #include <tuple>
 #include <vector>
 
+#include "render/mesh_file.h"
+
 namespace wsd::render {
 
 namespace {
-
-std::string face_label(const MeshData& m, size_t face) {
-    std::string s = "face " + std::to_string(face);
-    if (face < m.face_lines.size()) {
-        if (!m.source_name.empty())
-            s += " (" + m.source_name + " line " + std::to_string(m.face_lines[face]) + ")";
-        else
-            s += " (element " + std::to_string(m.face_lines[face]) + ")";
-    }
-    return s;
-}
 
 struct Edge {
     uint32_t a, b;  // welded ids, a < b
@@ -50,13 +41,13 @@ std::optional<std::string> closed_mesh_problem(const MeshData& m) {
         const uint32_t v[3] = {m.faces[f].x, m.faces[f].y, m.faces[f].z};
         for (int k = 0; k < 3; ++k) {
             if (v[k] >= nv)
-                return face_label(m, f) + " uses vertex " + std::to_string(v[k]) +
+                return face_name(m, f) + " uses vertex " + std::to_string(v[k]) +
                        ", out of range (the mesh has " + std::to_string(nv) + " vertices)";
         }
         for (int k = 0; k < 3; ++k) {
             const uint32_t from = v[k], to = v[(k + 1) % 3];
             const uint32_t a = weld[from], b = weld[to];
-            if (a == b) return face_label(m, f) + " has two corners at the same position";
+            if (a == b) return face_name(m, f) + " has two corners at the same position";
             edges.push_back({std::min(a, b), std::max(a, b), uint32_t(f), from, to, a < b});
         }
     }
@@ -65,7 +56,7 @@ std::optional<std::string> closed_mesh_problem(const MeshData& m) {
     });
     auto name = [&](const Edge& e) {
         return "edge from vertex " + std::to_string(e.from) + " to vertex " + std::to_string(e.to) + " of " +
-               face_label(m, e.face);
+               face_name(m, e.face);
     };
     for (size_t i = 0; i < edges.size();) {
         size_t j = i;
@@ -76,7 +67,7 @@ std::optional<std::string> closed_mesh_problem(const MeshData& m) {
             return name(edges[i]) + " is shared by " + std::to_string(n) +
                    " faces (a closed surface shares each edge between two)";
         if (edges[i].forward == edges[i + 1].forward)
-            return name(edges[i + 1]) + " runs the same way in " + face_label(m, edges[i].face) +
+            return name(edges[i + 1]) + " runs the same way in " + face_name(m, edges[i].face) +
                    ": the faces are not consistently oriented";
         i = j;
     }

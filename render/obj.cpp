@@ -123,7 +123,7 @@ class ObjParser {
 public:
     explicit ObjParser(const std::string& name) : name_(name) {}
 
-    ObjResult run(std::string_view text);
+    MeshFileResult run(std::string_view text);
 
 private:
     bool fail(const std::string& message) {
@@ -576,8 +576,8 @@ void ObjParser::reserve_for(std::string_view text) {
     corners_.reserve(3 * f);  // triangles; polygons grow it once or twice
 }
 
-ObjResult ObjParser::run(std::string_view text) {
-    ObjResult result;
+MeshFileResult ObjParser::run(std::string_view text) {
+    MeshFileResult result;
     reserve_for(text);
     const char* p = text.data();
     const char* const end = p + text.size();
@@ -642,22 +642,22 @@ ObjResult ObjParser::run(std::string_view text) {
 
 }  // namespace
 
-ObjResult parse_obj(const std::string& name, std::string_view text) {
+MeshFileResult parse_obj(const std::string& name, std::string_view text) {
     try {
         ObjParser parser(name);
         return parser.run(text);
     } catch (const std::bad_alloc&) {
-        ObjResult result;
+        MeshFileResult result;
         result.error = name + ": out of memory while reading the mesh";
         return result;
     }
 }
 
-ObjResult load_obj(const std::string& path) {
+MeshFileResult load_obj(const std::string& path) {
     FileBytes file;
     std::string reason;
     if (!read_whole_file(path, file, reason)) {
-        ObjResult result;
+        MeshFileResult result;
         result.error = "cannot read mesh file '" + path + "': " + reason;
         return result;
     }

@@ -10,16 +10,10 @@
 #include <vector>
 
 #include "render/limits.h"
+#include "render/mesh_file.h"
 #include "render/scene_spec.h"
 
 namespace wsd::render {
-
-struct ObjResult {
-    std::shared_ptr<MeshData> mesh;  // null on error
-    std::string error;               // "FILE:LINE: message" on error
-    // "FILE:LINE: ..." at most two: the skipped statements, the skipped zero-area triangles.
-    std::vector<std::string> notes;
-};
 
 // The language's limit on a mesh's triangle count (wsd-language.md §5: 2^24 primitives).
 inline constexpr size_t kMaxObjTriangles = kMaxPrimitives;
@@ -29,7 +23,7 @@ inline constexpr size_t kMaxObjTriangles = kMaxPrimitives;
 // vertex, so corners sharing a `v` with different `vt`/`vn` become separate vertices. In a file
 // where only some faces have vt (or vn), the others get the uv a mesh without uvs would use (their
 // barycentrics) and flat normals; a single face mixing corners with and without them is an error.
-ObjResult load_obj(const std::string& path);
-ObjResult parse_obj(const std::string& name, std::string_view text);
+MeshFileResult load_obj(const std::string& path);
+MeshFileResult parse_obj(const std::string& name, std::string_view text);
 
 }  // namespace wsd::render

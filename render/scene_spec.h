@@ -84,7 +84,8 @@ struct MeshData {
     std::vector<glm::vec3> normals;
     // For errors: where face i came from (e.g. an OBJ line number, or an element index); may be empty.
     std::vector<uint32_t> face_lines;
-    std::string source_name;  // e.g. the OBJ file's path, for messages
+    std::string source_name;           // e.g. the OBJ file's path, for messages
+    std::string face_origin = "line";  // what face_lines count in source_name: "line", "face element"
 };
 
 struct ShapeSpec {

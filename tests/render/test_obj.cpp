@@ -56,7 +56,7 @@ void check_mesh_invariants(const MeshData& m) {
         for (int k = 0; k < 3; ++k) REQUIRE(std::isfinite(v[k]));
 }
 
-ObjResult parse(std::string_view text) {
+MeshFileResult parse(std::string_view text) {
     return parse_obj("t.obj", text);
 }
 
@@ -76,7 +76,7 @@ TEST_CASE("R62: golden OBJ files", "[obj]") {
         INFO(path.filename().string());
         REQUIRE((want.triangles >= 0) != !want.error.empty());  // each file says exactly one of them
 
-        const ObjResult got = load_obj(path.string());
+        const MeshFileResult got = load_obj(path.string());
         const std::string prefix = dir.string() + "/";
         if (!want.error.empty()) {
             CHECK_FALSE(got.mesh);
