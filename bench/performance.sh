@@ -337,6 +337,12 @@ baseline_table() {
 }
 
 # ---------------------------------------------------------------- parsing and loading
+# mesh_row REGEX TITLE: a table row for the bench_obj line matching REGEX (size, wall, CPU, MB/s).
+mesh_row() {
+  awk -v t="$2" "/$1/"' {
+    for (i = 1; i <= NF; i++) { if ($i == "MB") mb = $(i - 1); if ($i == "median") wall = $(i + 1); if ($i == "CPU") cpu = $(i - 2) }
+    printf "| %s, %s MB | %s s wall, %s s CPU, %.0f MB/s |\n", t, mb, wall, cpu, mb / cpu; exit }' "$tmp/obj.txt"
+}
 parse_table() {
   section "Parsing and loading"
   local i
@@ -350,15 +356,18 @@ parse_table() {
   all() { cat "$tmp"/parse-*.txt | awk -v n="$2" "/$1/ { print \$n }"; }
   para "\`$build/bench_parse${parse_args:+ ${parse_args[*]}}\` ($runs $( ((runs == 1)) && echo run || echo runs); median and range of one pass each, wall time):" \
        "an inline mesh of $(commas "$tris") triangles ($mb MB of \`.wsd\` text), and a 100,000-sphere \`for\` loop." \
-       "\`$build/bench_obj\`: two 1,000,000-triangle OBJ files, the median of 3 loads." \
+       "\`$build/bench_obj\`: one 1,000,000-triangle grid written as two OBJ and two PLY files, the median of 3 loads" \
+       "(MB/s per CPU-second: the file's size over the load's CPU time, one thread)." \
        "" \
        "| figure | measured |" "|---|---:|" \
        "| inline mesh, lex + parse | $(all '^mesh.wsd +lex' 7 | median) MB/s ($(all '^mesh.wsd +lex' 7 | range)) |" \
        "| inline mesh, whole scene load (no BVH) | $(all '^mesh.wsd +load_scene' 7 | median) MB/s ($(all '^mesh.wsd +load_scene' 7 | range)) |" \
        "| peak memory per triangle, source text included (lex + parse / load) | $(all '^mesh.wsd +lex' 10 | median) / $(all '^mesh.wsd +load_scene' 15 | median) bytes |" \
        "| 100,000-sphere \`for\` loop, whole scene load | $(all '^spheres.wsd +load_scene' 5 | median) s ($(all '^spheres.wsd +load_scene' 5 | range)) |" \
-       "| OBJ \`f a b c\`, $(field "$tmp/obj.txt" '^f v ' 7) MB | $(field "$tmp/obj.txt" '^f v ' 11) s wall, $(awk '/^f v / { print $(NF-2); exit }' "$tmp/obj.txt") s CPU |" \
-       "| OBJ \`f a/a/a\` with \`vt\` and \`vn\`, $(field "$tmp/obj.txt" '^f v\/vt' 7) MB | $(field "$tmp/obj.txt" '^f v\/vt' 11) s wall, $(awk '/^f v\/vt/ { print $(NF-2); exit }' "$tmp/obj.txt") s CPU |"
+       "$(mesh_row '^f v ' 'OBJ `f a b c`')" \
+       "$(mesh_row '^f v\/vt' 'OBJ `f a/a/a` with `vt` and `vn`')" \
+       "$(mesh_row '^ply ascii' 'PLY, ASCII')" \
+       "$(mesh_row '^ply binary' 'PLY, binary little-endian')"
 }
 
 # ---------------------------------------------------------------- the page
