@@ -8,6 +8,7 @@
 #include "lang/interpreter.h"
 #include "lang/lower.h"
 #include "lang/parser.h"
+#include "render/memory_budget.h"
 
 namespace wsd::lang {
 
@@ -15,6 +16,30 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Refuses a scene whose build would need more memory than the machine can give, at the shape
+// that needs the most (or the file's start), with both figures. True when it fits.
+bool fits_in_memory(const render::SceneSpec& spec, const LoadedScene& loaded, uint32_t file,
+                    Diagnostics& diags) {
+    const render::MemoryAvailable available = render::available_memory();
+    if (!available.error.empty()) {
+        diags.error(Span{file, 0, 0}, available.error);
+        return false;
+    }
+    if (!available.bytes) return true;
+    const render::MemoryEstimate need = render::estimate_memory(spec);
+    if (need.bytes <= *available.bytes) return true;
+    const Span at = need.largest_shape < loaded.shape_spans.size() && need.largest_shape_bytes > 0
+                        ? loaded.shape_spans[need.largest_shape]
+                        : Span{file, 0, 0};
+    Diagnostic& d = diags.error(at, "the scene needs about " + render::memory_text(need.bytes) +
+                                        " to build and render, more than the " +
+                                        render::memory_text(*available.bytes) + " of " + available.source);
+    d.help.push_back(std::to_string(need.primitives) + " primitives, " + std::to_string(need.instances) +
+                     " instances and " + std::to_string(need.pixels) +
+                     " pixels; the shape here needs about " + render::memory_text(need.largest_shape_bytes));
+    return false;
 }
 
 }  // namespace
@@ -57,6 +82,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
     loaded.parse_seconds = seconds_since(start);
 
     if (options.build && !options.fragment) {
+        if (!fits_in_memory(lowered.spec, loaded, file, diags)) return std::nullopt;
         const auto build_start = std::chrono::steady_clock::now();
         std::vector<render::SpecError> errors;
         loaded.scene =

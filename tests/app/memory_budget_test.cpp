@@ -1,0 +1,74 @@
+// A scene that does not fit in memory is refused before its build, with both figures and at the
+// shape that needs the most; the estimate counts a mesh's triangles, and a prototype once however
+// many instances use it.
+#include "render/memory_budget.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+
+#include "app_test_util.h"
+
+using namespace wsd::test;
+using namespace wsd::render;
+
+namespace {
+
+ShapeSpec mesh_shape(size_t triangles) {
+    auto mesh = std::make_shared<MeshData>();
+    mesh->vertices.assign(triangles + 2, glm::vec3(0));
+    mesh->faces.assign(triangles, glm::uvec3(0, 1, 2));
+    ShapeSpec s;
+    s.kind = ShapeKind::Mesh;
+    s.mesh = mesh;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("the memory estimate grows with triangles and counts a prototype once", "[memory]") {
+    SceneSpec small, large;
+    small.shapes.push_back(mesh_shape(1000));
+    large.shapes.push_back(mesh_shape(1000000));
+    const MemoryEstimate a = estimate_memory(small), b = estimate_memory(large);
+    CHECK(a.primitives == 1000);
+    CHECK(b.primitives == 1000000);
+    CHECK(b.bytes - a.bytes > 999000u * 100u);  // at least 100 bytes a triangle
+    CHECK(b.bytes - a.bytes < 999000u * 400u);
+
+    SceneSpec instanced;
+    instanced.prototypes.push_back(PrototypeSpec{{mesh_shape(1000000)}, 0});
+    for (int i = 0; i < 1000; ++i) {
+        ShapeSpec inst;
+        inst.kind = ShapeKind::Instance;
+        inst.prototype = 0;
+        instanced.shapes.push_back(inst);
+    }
+    const MemoryEstimate c = estimate_memory(instanced);
+    CHECK(c.instances == 1000);
+    CHECK(c.primitives == 1000000);
+    CHECK(c.bytes < b.bytes + 1000u * 1024u);
+    CHECK(c.largest_shape == 0);
+}
+
+TEST_CASE("a scene bigger than the memory it may use is refused before it is built", "[memory][e2e]") {
+    TempDir dir;
+    fs::copy_file(fs::path(WSD_SOURCE_DIR) / "examples/models/torus.obj", dir.path() / "torus.obj");
+    write_file(dir / "s.wsd",
+               "settings { width 40  height 30 }\ncamera { position <0, 2, -4>  look_at <0, 0, 0> }\n"
+               "light point { position <3, 8, -5> }\nlet default_material = material { }\nsphere { center <0, 0, 0>  radius 0.1 }\n"
+               "mesh { file \"torus.obj\" }\n");
+    const RunResult refused = run_wsd(dir, "render s.wsd -o s.png", "WSD_MAX_MEMORY=100K");
+    CHECK(refused.status != 0);
+    CHECK(refused.err.find("s.wsd:6:13: error: the scene needs about ") != std::string::npos);
+    CHECK(refused.err.find("more than the 100 KiB of WSD_MAX_MEMORY") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir.path() / "s.png"));
+
+    const RunResult bad = run_wsd(dir, "render s.wsd -o s.png", "WSD_MAX_MEMORY=lots");
+    CHECK(bad.status != 0);
+    CHECK(bad.err.find("WSD_MAX_MEMORY='lots' is not a size") != std::string::npos);
+
+    const RunResult fits = run_wsd(dir, "render s.wsd -o s.png", "WSD_MAX_MEMORY=2G");
+    INFO(fits.err);
+    CHECK(fits.status == 0);
+    CHECK(fs::exists(dir.path() / "s.png"));
+}
