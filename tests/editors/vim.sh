@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# CTest: the Vim support in editors/vim. Vim, run in Ex mode with only that directory on its
+# runtimepath, detects .wsd and .wsdi files, sets commentstring, loads the syntax file without an
+# error and highlights keywords, properties, functions, vectors and comments; `:make` (compiler
+# wsd, through `wsd check`) fills the quickfix list with each diagnostic's file, line, column and
+# kind, also for an error in an included file. Exits 77 (CTest's SKIP_RETURN_CODE) when Vim is not
+# installed, except in CI (CI=true), where that is a failure.
+# Usage: vim.sh WSD SOURCE_DIR
+set -euo pipefail
+wsd=$1
+src=$2
+if ! command -v vim >/dev/null 2>&1; then
+  if [[ "${CI:-}" == true ]]; then
+    echo "vim.sh: vim is not installed (CI installs the Debian package vim)" >&2
+    exit 1
+  fi
+  echo "SKIPPED: vim is not installed (apt-get install vim)"
+  exit 77
+fi
+work=$(mktemp -d "${TMPDIR:-/tmp}/wsd-vim-XXXXXX")
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+cat >scene.wsd <<'WSD'
+sphere { center <0, 1, 0>  radus 2  material { color <1, 0, 0> } }
+let m = min(1, 2) // the smaller
+include "parts.wsdi"
+WSD
+printf 'let q = 1 +\n' >parts.wsdi
+
+cat >check.vim <<'VIM'
+let g:out = []
+function! Note(line) abort
+  call add(g:out, a:line)
+endfunction
+function! SynAt(line, col) abort
+  return synIDattr(synID(a:line, a:col, 1), 'name')
+endfunction
+syntax on
+filetype plugin on
+let v:errmsg = ''
+edit scene.wsd
+call Note('filetype ' . &filetype)
+call Note('commentstring ' . &commentstring)
+call Note('syntax ' . get(b:, 'current_syntax', 'none'))
+call Note('errors [' . v:errmsg . ']')
+call Note('at 1:1 ' . SynAt(1, 1))
+call Note('at 1:10 ' . SynAt(1, 10))
+call Note('at 1:18 ' . SynAt(1, 18))
+call Note('at 1:38 ' . SynAt(1, 38))
+call Note('at 2:1 ' . SynAt(2, 1))
+call Note('at 2:9 ' . SynAt(2, 9))
+call Note('at 2:13 ' . SynAt(2, 13))
+call Note('at 2:20 ' . SynAt(2, 20))
+call Note('at 3:1 ' . SynAt(3, 1))
+call Note('at 3:10 ' . SynAt(3, 10))
+silent make!
+for e in getqflist()
+  if e.valid
+    call Note(printf('qf %s:%d:%d:%s:%s', bufname(e.bufnr), e.lnum, e.col, e.type, e.text))
+  endif
+endfor
+edit parts.wsdi
+call Note('fragment filetype ' . &filetype)
+call writefile(g:out, 'out.txt')
+qall!
+VIM
+
+vim -N -u NONE -i NONE -es --cmd "set runtimepath^=$src/editors/vim" --cmd "let g:wsd_path = '$wsd'" \
+  -S check.vim </dev/null >vim.log 2>&1 || true
+
+cat >expected.txt <<'TXT'
+filetype wsd
+commentstring // %s
+syntax wsd
+errors []
+at 1:1 wsdBlock
+at 1:10 wsdProperty
+at 1:18 wsdNumber
+at 1:38 wsdValueBlock
+at 2:1 wsdDeclaration
+at 2:9 wsdFunction
+at 2:13 wsdNumber
+at 2:20 wsdComment
+at 3:1 wsdControl
+at 3:10 wsdString
+qf scene.wsd:1:28:e:unknown property 'radus' in sphere
+qf parts.wsdi:2:1:e:expected an expression, found end of file
+qf scene.wsd:3:9:n:in file included from here
+fragment filetype wsd
+TXT
+if ! diff -u expected.txt out.txt; then
+  cat vim.log >&2
+  echo "vim.sh: Vim's view of the scene differs from the expected one (above)" >&2
+  exit 1
+fi
+echo "vim: filetype, syntax and :make with the wsd compiler work"
