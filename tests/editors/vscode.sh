@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # CTest: the VS Code extension in editors/vscode. Installs its npm packages (`npm ci`, only when
 # package-lock.json changed since the last install into node_modules/), runs the grammar scope
-# tests (vscode-tmgrammar-test on editors/vscode/test/*.wsd, *.wsdi) and the language client's
-# test, and packages the extension with vsce into OUT_DIR/wsd.vsix, which must hold the manifest,
+# tests (vscode-tmgrammar-test on editors/vscode/test/*.wsd, *.wsdi), the grammar on every example
+# and golden file that `wsd check` accepts (no invalid scope, no region left open) and the
+# language client's test, and packages the extension with vsce into OUT_DIR/wsd.vsix, which must hold the manifest,
 # the grammar, the client and its runtime dependency. Exits 77 (CTest's SKIP_RETURN_CODE) when
 # Node.js 20 or later with npm is not installed, except in CI (CI=true), where that is a failure.
-# Usage: vscode.sh SOURCE_DIR OUT_DIR
+# Usage: vscode.sh WSD SOURCE_DIR OUT_DIR
 set -euo pipefail
-src=$1
-out=$2
+wsd=$1
+src=$2
+out=$3
 ext="$src/editors/vscode"
 
 missing=""
@@ -37,7 +39,13 @@ if [[ ! -f $stamp || $(cat "$stamp") != "$want" ]]; then
   npm ci --no-audit --no-fund --loglevel=error
   echo "$want" >"$stamp"
 fi
-npm test --silent
+npx --no-install vscode-tmgrammar-test -g syntaxes/wsd.tmLanguage.json "test/*.wsd" "test/*.wsdi"
+node test/client.test.js
+valid=()
+while IFS= read -r -d '' file; do
+  "$wsd" check "$src/$file" >/dev/null 2>&1 && valid+=("$file")
+done < <(cd "$src" && find examples tests/golden \( -name '*.wsd' -o -name '*.wsdi' \) -print0 | sort -z)
+node test/examples.test.js "${valid[@]}"
 mkdir -p "$out"
 rm -f "$out/wsd.vsix"
 npx --no-install vsce package --no-update-package-json --allow-missing-repository -o "$out/wsd.vsix" \
