@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # CTest: the Vim support in editors/vim. Vim, run in Ex mode with only that directory on its
 # runtimepath, detects .wsd and .wsdi files, sets commentstring, loads the syntax file without an
-# error and highlights keywords, properties, functions, vectors and comments; `:make` (compiler
-# wsd, through `wsd check`) fills the quickfix list with each diagnostic's file, line, column and
-# kind, also for an error in an included file. Exits 77 (CTest's SKIP_RETURN_CODE) when Vim is not
-# installed, except in CI (CI=true), where that is a failure.
+# error and highlights keywords, properties, functions, numbers, strings and comments; `:make`
+# (compiler wsd, through `wsd check`) fills the quickfix list with each diagnostic's file, line,
+# column and kind, also for an error in an included file; nothing in the example scenes is
+# highlighted as an error. Exits 77 (CTest's SKIP_RETURN_CODE) when Vim is not installed, except
+# in CI (CI=true), where that is a failure.
 # Usage: vim.sh WSD SOURCE_DIR
 set -euo pipefail
 wsd=$1
@@ -62,11 +63,29 @@ for e in getqflist()
 endfor
 edit parts.wsdi
 call Note('fragment filetype ' . &filetype)
+" The example scenes are valid: nothing in them is highlighted as an error.
+let g:bad = 0
+let g:files = 0
+for f in glob(g:examples . '/*.wsd', 0, 1) + glob(g:examples . '/include/*.wsdi', 0, 1)
+  execute 'edit ' . fnameescape(f)
+  let g:files += 1
+  for l in range(1, line('$'))
+    for c in range(1, col([l, '$']) - 1)
+      if SynAt(l, c) =~# 'Error\|BadEscape'
+        call Note(printf('error group %s at %s:%d:%d', SynAt(l, c), fnamemodify(f, ':t'), l, c))
+        let g:bad += 1
+        break
+      endif
+    endfor
+  endfor
+endfor
+call Note('example errors ' . g:bad . (g:files >= 5 ? '' : ' (too few files: ' . g:files . ')'))
 call writefile(g:out, 'out.txt')
 qall!
 VIM
 
 vim -N -u NONE -i NONE -es --cmd "set runtimepath^=$src/editors/vim" --cmd "let g:wsd_path = '$wsd'" \
+  --cmd "let g:examples = '$src/examples'" \
   -S check.vim </dev/null >vim.log 2>&1 || true
 
 cat >expected.txt <<'TXT'
@@ -88,6 +107,7 @@ qf scene.wsd:1:28:e:unknown property 'radus' in sphere
 qf parts.wsdi:2:1:e:expected an expression, found end of file
 qf scene.wsd:3:9:n:in file included from here
 fragment filetype wsd
+example errors 0
 TXT
 if ! diff -u expected.txt out.txt; then
   cat vim.log >&2

@@ -1,5 +1,5 @@
 // The language client's wiring, with VS Code and vscode-languageclient replaced by recording
-// fakes: activation starts `<wsd.path> lsp` over stdio for the wsd language, a change of
+// fakes (after checking that the real library has the names the extension uses): activation starts `<wsd.path> lsp` over stdio for the wsd language, a change of
 // `wsd.path` restarts it with the new executable, the restart command works, a server that
 // cannot start is reported (not thrown), and deactivation stops it. Run: node test/client.test.js
 'use strict';
@@ -17,6 +17,18 @@ assert.deepStrictEqual(serverCommand(''), { command: 'wsd', args: ['lsp'] });
 assert.deepStrictEqual(serverCommand(undefined), { command: 'wsd', args: ['lsp'] });
 assert.deepStrictEqual(serverCommand(42), { command: 'wsd', args: ['lsp'] });
 assert.deepStrictEqual(serverCommand('~/bin/wsd', '/home/a'), { command: '/home/a/bin/wsd', args: ['lsp'] });
+
+// The real client library (with a stand-in for VS Code that answers every name) has what
+// extension.js takes from it.
+const realLoad = Module._load;
+const anything = { get: (target, key) => (key in target ? target[key] : new Proxy(function () {}, anything)) };
+Module._load = function (request, parent, isMain) {
+  if (request === 'vscode') return new Proxy(function () {}, anything);
+  return realLoad.call(this, request, parent, isMain);
+};
+const real = require('vscode-languageclient/node');
+assert.strictEqual(typeof real.LanguageClient, 'function');
+assert.strictEqual(typeof real.TransportKind.stdio, 'number');
 
 // Recording fakes.
 const settings = { path: '/first/wsd' };
@@ -65,9 +77,8 @@ class FakeClient {
     events.push({ event: 'stop', command: this.serverOptions.command });
   }
 }
-const fakeClientModule = { LanguageClient: FakeClient, TransportKind: { stdio: 0, ipc: 1, pipe: 2, socket: 3 } };
+const fakeClientModule = { LanguageClient: FakeClient, TransportKind: real.TransportKind };
 
-const realLoad = Module._load;
 Module._load = function (request, parent, isMain) {
   if (request === 'vscode') return fakeVscode;
   if (request === 'vscode-languageclient/node') return fakeClientModule;
