@@ -108,6 +108,8 @@ async function main() {
   assert.deepStrictEqual(language.extensions, ['.wsd', '.wsdi']);
   assert.ok(packageJson.activationEvents.includes('onLanguage:wsd'));
   assert.strictEqual(packageJson.contributes.configuration.properties['wsd.path'].default, 'wsd');
+  // A workspace that is not trusted cannot choose the executable.
+  assert.deepStrictEqual(packageJson.capabilities.untrustedWorkspaces.restrictedConfigurations, ['wsd.path']);
   const first = events.length;
   assert.ok(commands['wsd.restartServer'], 'the restart command is registered');
   const packaged = packageJson.contributes.commands.map((c) => c.command);
