@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # CTest: the VS Code extension in editors/vscode. Installs its npm packages (`npm ci`, only when
 # package-lock.json changed since the last install into node_modules/), runs the grammar scope
-# tests (vscode-tmgrammar-test on editors/vscode/test/*.wsd, *.wsdi), the grammar on every example
-# and golden file that `wsd check` accepts (no invalid scope, no region left open) and the
-# language client's test, and packages the extension with vsce into OUT_DIR/wsd.vsix, which must hold the manifest,
-# the grammar, the client and its runtime dependency. Exits 77 (CTest's SKIP_RETURN_CODE) when
-# Node.js 20 or later with npm is not installed, except in CI (CI=true), where that is a failure.
+# tests (vscode-tmgrammar-test on editors/vscode/test/*.wsd, *.wsdi), the language client's test
+# and the grammar over every example and golden file that `wsd check` accepts (no invalid scope,
+# no region left open), and packages the extension with vsce into OUT_DIR/wsd.vsix, which must
+# hold the manifest, the grammar, the client and its runtime dependency. Exits 77 (CTest's
+# SKIP_RETURN_CODE) when Node.js 20 or later with npm is not installed, except in CI (CI=true),
+# where that is a failure.
 # Usage: vscode.sh WSD SOURCE_DIR OUT_DIR
 set -euo pipefail
-wsd=$1
-src=$2
-out=$3
+wsd=$(realpath "$1")
+src=$(realpath "$2")
+out=$(realpath -m "$3")
 ext="$src/editors/vscode"
 
 missing=""
@@ -45,6 +46,10 @@ valid=()
 while IFS= read -r -d '' file; do
   "$wsd" check "$src/$file" >/dev/null 2>&1 && valid+=("$file")
 done < <(cd "$src" && find examples tests/golden \( -name '*.wsd' -o -name '*.wsdi' \) -print0 | sort -z)
+if ((${#valid[@]} < 10)); then
+  echo "vscode.sh: only ${#valid[@]} example and golden files pass '$wsd check'" >&2
+  exit 1
+fi
 node test/examples.test.js "${valid[@]}"
 mkdir -p "$out"
 rm -f "$out/wsd.vsix"
