@@ -8,8 +8,8 @@
 # in CI (CI=true), where that is a failure.
 # Usage: vim.sh WSD SOURCE_DIR
 set -euo pipefail
-wsd=$1
-src=$2
+wsd=$(realpath "$1")
+src=$(realpath "$2")
 if ! command -v vim >/dev/null 2>&1; then
   if [[ "${CI:-}" == true ]]; then
     echo "vim.sh: vim is not installed (CI installs the Debian package vim)" >&2
