@@ -25,6 +25,7 @@ cd "$work"
 cat >scene.wsd <<'WSD'
 sphere { center <0, 1, 0>  radus 2  material { color <1, 0, 0> } }
 let m = min(1, 2) // the smaller
+light point { position <0, 5, 0> }
 include "parts.wsdi"
 WSD
 printf 'let q = 1 +\n' >parts.wsdi
@@ -54,7 +55,9 @@ call Note('at 2:9 ' . SynAt(2, 9))
 call Note('at 2:13 ' . SynAt(2, 13))
 call Note('at 2:20 ' . SynAt(2, 20))
 call Note('at 3:1 ' . SynAt(3, 1))
-call Note('at 3:10 ' . SynAt(3, 10))
+call Note('at 3:7 ' . SynAt(3, 7))
+call Note('at 4:1 ' . SynAt(4, 1))
+call Note('at 4:10 ' . SynAt(4, 10))
 silent make!
 for e in getqflist()
   if e.valid
@@ -101,11 +104,13 @@ at 2:1 wsdDeclaration
 at 2:9 wsdFunction
 at 2:13 wsdNumber
 at 2:20 wsdComment
-at 3:1 wsdControl
-at 3:10 wsdString
+at 3:1 wsdBlock
+at 3:7 wsdLightKind
+at 4:1 wsdControl
+at 4:10 wsdString
 qf scene.wsd:1:28:e:unknown property 'radus' in sphere
 qf parts.wsdi:2:1:e:expected an expression, found end of file
-qf scene.wsd:3:9:n:in file included from here
+qf scene.wsd:4:9:n:in file included from here
 fragment filetype wsd
 example errors 0
 TXT
