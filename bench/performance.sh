@@ -5,24 +5,28 @@
 # ./setup.sh). The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
 # povray package); otherwise that section says so.
 #
-# Usage: bench/performance.sh [--quick] [--baseline WSD] [-o OUT] [BUILD_DIR]
+# Usage: bench/performance.sh [--quick] [--baseline WSD] [--only NAMES] [-o OUT] [BUILD_DIR]
 #   --quick         small sizes and one run of each, for checking the script (about a minute); the
 #                   `wsd bench` output then goes to a temporary directory instead of docs/bench/
 #   --baseline WSD  an older wsd executable: every example is rendered by both, alternating, and
 #                   the page says whether the images are byte-identical and how the times compare
+#   --only NAMES    measure only these sections (comma-separated: cornell, adaptive, bench, …; see
+#                   `sections` below) and replace them in the existing page, each stamped with its
+#                   own date and load; the rest of the page stays as its run measured it
 #   -o OUT          the page to write (default docs/performance.md)
 # A full run takes about 6 CPU-minutes, mostly on one thread: 15 minutes of wall time on a busy
 # 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-quick=0; out=docs/performance.md; build=build; baseline=; baseline_shown=
+quick=0; out=docs/performance.md; build=build; baseline=; baseline_shown=; only=
 while (($#)); do
   case $1 in
     --quick) quick=1 ;;
     --baseline) baseline_shown=${2:?--baseline needs an executable}; baseline=$(realpath "$2"); shift ;;
+    --only) only=${2:?--only needs section names}; shift ;;
     -o) out=${2:?-o needs a file}; shift ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     -*) echo "performance: unknown option $1" >&2; exit 2 ;;
     *) build=$1 ;;
   esac
@@ -59,7 +63,11 @@ commas() { printf "%d" "$1" | sed ':a; s/\B[0-9]\{3\}\>/,&/; ta'; }
 loadavg() { cut -d' ' -f1-3 /proc/loadavg; }
 
 page=$tmp/page.md
-section() { printf '\n## %s\n\n' "$1" >>"$page"; }
+section() {
+  printf '\n## %s\n\n' "$1" >>"$page"
+  [[ -z $only ]] || printf '_Measured on its own by `bench/performance.sh --only %s` on %s (load average before: %s)._\n\n' \
+    "$current" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$(loadavg)" >>"$page"
+}
 para() { printf '%s\n' "$@" >>"$page"; }
 
 load_before=$(loadavg)
@@ -371,16 +379,13 @@ parse_table() {
 }
 
 # ---------------------------------------------------------------- the page
-cornell_table
-adaptive_table
-bench_table
-threads_table
-mesh_table
-primitives_table
-csg_table
-instances_table
-baseline_table
-parse_table
+sections=(cornell adaptive bench threads mesh primitives csg instances baseline parse)
+for name in ${only//,/ }; do
+  [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
+done
+for current in "${sections[@]}"; do
+  if [[ -z $only || ",$only," == *",$current,"* ]]; then "${current}_table"; fi
+done
 load_after=$(loadavg)
 
 model=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
@@ -406,5 +411,20 @@ cpu=$(awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, t, /[ms]/); s += 60 * 
   echo "  wall times include waiting for a core: compare CPU-seconds, and ratios measured in the same run."
   cat "$page"
 } >"$out.tmp"
+if [[ -n $only && -f $out ]]; then
+  # Replace the measured sections (by their "## " title) in the existing page; new ones go last.
+  python3 - "$out" "$page" >"$out.tmp" <<'PY'
+import re, sys
+def split(text):
+    parts = re.split(r"(?m)^(?=## )", text)
+    return parts[0], [(p.split("\n", 1)[0], p) for p in parts[1:]]
+head, old = split(open(sys.argv[1]).read())
+_, new = split(open(sys.argv[2]).read())
+fresh = dict(new)
+out = head + "".join(fresh.pop(title, body) for title, body in old)
+out += "".join(body for title, body in new if title in fresh)
+sys.stdout.write(out)
+PY
+fi
 mv "$out.tmp" "$out"
 log "wrote $out in ${elapsed} s"
