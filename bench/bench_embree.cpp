@@ -30,7 +30,8 @@
 // other. Embree runs with its defaults (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST).
 //
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
-// one `build|...` line per scene. Usage: bench_embree [--quick] (quick: small meshes, one pass).
+// one `build|...` line per scene. Usage: bench_embree [--quick] [SCENE...] (quick: meshes of a
+// hundredth the size, one pass, and no mesh10m unless named; SCENE: cornell, mesh1m, mesh10m).
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
 
@@ -693,13 +694,32 @@ int run_scene(const SceneDef& d, int passes) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
+    bool quick = false;
+    std::vector<std::string> only;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--quick")
+            quick = true;
+        else if (a == "cornell" || a == "mesh1m" || a == "mesh10m")
+            only.push_back(a);
+        else {
+            std::printf("usage: bench_embree [--quick] [cornell|mesh1m|mesh10m]...\n");
+            return 2;
+        }
+    }
+    auto wanted = [&](const char* name) {
+        return only.empty() ? !(quick && std::string(name) == "mesh10m")
+                            : std::find(only.begin(), only.end(), name) != only.end();
+    };
     std::printf("Embree %d.%d.%d, one tracing thread; t tolerance %.0e relative, edge tolerance %.0e\n",
                 RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, kTRelTolerance, kEdgeTolerance);
-    int status = run_scene(cornell_scene(), quick ? 1 : 5);
-    if (status == 0)
+    int status = 0;
+    if (wanted("cornell")) status = run_scene(cornell_scene(), quick ? 1 : 5);
+    if (status == 0 && wanted("mesh1m"))
         status =
             run_scene(displaced_mesh_scene("mesh1m", quick ? 100 : 1000, quick ? 51 : 501), quick ? 1 : 5);
-    if (status == 0 && !quick) status = run_scene(displaced_mesh_scene("mesh10m", 3163, 1582), 3);
+    if (status == 0 && wanted("mesh10m"))
+        status =
+            run_scene(displaced_mesh_scene("mesh10m", quick ? 317 : 3163, quick ? 159 : 1582), quick ? 1 : 3);
     return status;
 }
