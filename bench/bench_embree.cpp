@@ -20,14 +20,16 @@
 //            the side the ray came from (incoherent).
 //   Secondary origins are wsd's error-bounded offset origins, rounded to float away from the
 //   surface (so that both sides start on the same side of it); Embree's tnear is 0.
-// Rates are rays per CPU-second of the tracing thread, the median of kPasses passes taken in
-// turn (wsd, Embree, wsd, ...). Hits are compared ray by ray: the same primitive (wsd's shape
-// and its triangle; any of a box's 12 triangles counts as the box) and t within a relative 1e-5.
-// Rays where the two differ are classified: tie (different primitives at the same t: a shared
-// edge or vertex), origin (one side hits within 1e-5 of the scene's size from the origin),
-// edge (the hit one side found lies within 1e-4 of its triangle's or box's edge, relative),
-// grazing (a sphere the ray passes within 1e-4 of its radius), t (same primitive, t apart),
-// other. Embree runs with its defaults (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST).
+// Rates are rays per CPU-second of the tracing thread, the median of the passes taken in turn
+// (wsd, Embree, wsd, ...). Hits are compared ray by ray: the same primitive (wsd's shape and its
+// triangle; any of a box's 12 triangles counts as the box) and distances apart by at most 1e-5
+// of the float scale along the ray (the distance travelled plus the origin's distance from the
+// world's origin). Rays where the two differ are classified: tie (different primitives at the
+// same t: a shared edge or vertex), origin (one side hits within 1e-5 of the scene's size from
+// the origin), edge (the nearer hit lies within 1e-5 of the float scale from its triangle's or
+// box's edge), grazing (the same for a sphere's silhouette), t (same primitive, t apart), other;
+// and counted by whose hit is the nearer (or the only) one. Embree runs with its defaults
+// (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST; its own choice of ISA at run time).
 //
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
 // one `build|...` line per scene. Usage: bench_embree [--quick] [SCENE...] (quick: meshes of a
