@@ -32,8 +32,9 @@
 // (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST; its own choice of ISA at run time).
 //
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
-// one `build|...` line per scene. Usage: bench_embree [--quick] [SCENE...] (quick: meshes of a
-// hundredth the size, one pass, and no mesh10m unless named; SCENE: cornell, mesh1m, mesh10m).
+// one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [SCENE...] (quick:
+// meshes of a hundredth the size, one pass, and no mesh10m unless named; robust: Embree in its
+// robust mode, RTC_SCENE_FLAG_ROBUST; SCENE: cornell, mesh1m, mesh10m).
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
 
@@ -134,10 +135,15 @@ void box_corners(const ShapeSpec& s, std::vector<Vec3f>& verts, std::vector<glm:
     }
 }
 
+// Embree's robust mode (RTC_SCENE_FLAG_ROBUST: no cracks between triangles that share an edge,
+// at some speed), from --robust.
+bool g_robust = false;
+
 bool build_embree(const SceneSpec& spec, EmbreeScene& e) {
     e.device = rtcNewDevice("threads=2");
     if (!e.device) return false;
     e.scene = rtcNewScene(e.device);
+    if (g_robust) rtcSetSceneFlags(e.scene, RTC_SCENE_FLAG_ROBUST);
     for (size_t i = 0; i < spec.shapes.size(); ++i) {
         const ShapeSpec& s = spec.shapes[i];
         const unsigned id = static_cast<unsigned>(i);
@@ -570,10 +576,12 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         if (a == "--quick")
             quick = true;
+        else if (a == "--robust")
+            g_robust = true;
         else if (a == "cornell" || a == "mesh1m" || a == "mesh10m")
             only.push_back(a);
         else {
-            std::printf("usage: bench_embree [--quick] [cornell|mesh1m|mesh10m]...\n");
+            std::printf("usage: bench_embree [--quick] [--robust] [cornell|mesh1m|mesh10m]...\n");
             return 2;
         }
     }
@@ -582,8 +590,10 @@ int main(int argc, char** argv) {
                             : std::find(only.begin(), only.end(), name) != only.end();
     };
     std::printf(
-        "Embree %d.%d.%d, one tracing thread; t tolerance %.0e, edge tolerance %.0e (of the float scale)\n",
-        RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, kTRelTolerance, kEdgeTolerance);
+        "Embree %d.%d.%d, %s mode, one tracing thread; t tolerance %.0e, edge tolerance %.0e (of the float "
+        "scale)\n",
+        RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, g_robust ? "robust" : "default",
+        kTRelTolerance, kEdgeTolerance);
     int status = 0;
     if (wanted("cornell")) status = run_scene(cornell_scene(), quick ? 1 : 5);
     if (status == 0 && wanted("mesh1m"))
