@@ -446,7 +446,9 @@ int run_scene(const SceneDef& d, int passes) {
         "%s build, 2 threads: wsd %.3f s wall, %.3f s CPU (%.1f bytes/triangle: geometry + BVH; the MeshData "
         "adds %.1f), Embree %.3f s wall; peak RSS %.0f MiB\n",
         d.name.c_str(), w1 - w0, c1 - c0, per_tri, mesh_per_tri, w3 - w2, peak_rss_mib());
-    std::printf("build|%s|%zu|%.3f|%.3f|%.1f|%.1f|%.3f\n", d.name.c_str(), tris, w1 - w0, c1 - c0, per_tri,
+    // Rows name the scene, and Embree's robust mode when it is on.
+    const std::string label = d.name + (g_robust ? ", Embree robust" : "");
+    std::printf("build|%s|%zu|%.3f|%.3f|%.1f|%.1f|%.3f\n", label.c_str(), tris, w1 - w0, c1 - c0, per_tri,
                 mesh_per_tri, w3 - w2);
 
     const RaySet primary = primary_rays(d);
@@ -562,7 +564,7 @@ int run_scene(const SceneDef& d, int passes) {
         // comparison of single rays stands for them.
         const Compare c =
             qq.occlusion ? compare_occluded(d, *g, scene, *qq.set) : compare_closest(d, *g, scene, *qq.set);
-        print_row(d.name, qq.name, rates[q], qq.set->rays.size(), found[q], c);
+        print_row(label, qq.name, rates[q], qq.set->rays.size(), found[q], c);
     }
     return 0;
 }
