@@ -3,7 +3,8 @@
 # the top, then one table per benchmark, each with the command that regenerates it. It builds
 # nothing: it runs the programs of an existing build directory (default build/, made by
 # ./setup.sh). The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
-# povray package); otherwise that section says so.
+# povray package); otherwise that section says so. The same holds for the side-by-side tables
+# against Embree 3: bench_embree is built when CMake finds Debian's libembree-dev.
 #
 # Usage: bench/performance.sh [--quick] [--baseline WSD] [--only NAMES] [-o OUT] [BUILD_DIR]
 #   --quick         small sizes and one run of each, for checking the script (about a minute); the
@@ -14,7 +15,7 @@
 #                   `sections` below) and replace them in the existing page, each stamped with its
 #                   own date and load; the rest of the page stays as its run measured it
 #   -o OUT          the page to write (default docs/performance.md)
-# A full run takes about 6 CPU-minutes, mostly on one thread: 15 minutes of wall time on a busy
+# A full run takes about 10 CPU-minutes, mostly on one thread: 20 minutes of wall time on a busy
 # 2-core machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -224,6 +225,54 @@ mesh_table() {
        "| Cornell box camera / shadow rays, no BVH (every primitive) | $(after cornell.brute primary) / $(after cornell.brute shadow) M/CPU-s |"
 }
 
+# ---------------------------------------------------------------- the same rays through Embree
+embree_table() {
+  section "The same rays through Embree"
+  if [[ ! -x $build/bench_embree ]]; then
+    para "Not measured: \`bench_embree\` is built only when CMake finds Embree 3 (Debian's \`libembree-dev\`)."
+    return 0
+  fi
+  local args=(); ((quick)) && args=(--quick)
+  log "bench_embree ${args[*]}"
+  "$build/bench_embree" "${args[@]}" >"$tmp/embree.txt"
+  # The million-triangle mesh again with Embree in its robust mode (no cracks at shared edges).
+  log "bench_embree ${args[*]} --robust mesh1m"
+  "$build/bench_embree" "${args[@]}" --robust mesh1m >>"$tmp/embree.txt"
+  local f=$tmp/embree.txt
+  para "\`$build/bench_embree${args:+ ${args[*]}}\`: wsd's geometry and $(awk '/^Embree/ { sub(/,$/, "", $2); print $1, $2; exit }' "$f") (Debian's" \
+       "\`libembree-dev\`, default build quality; \"Embree robust\": in its robust mode," \
+       "\`RTC_SCENE_FLAG_ROBUST\`) on the same scenes and the same pre-generated rays, one tracing" \
+       "thread, one after the other in one run. The Cornell box's 17" \
+       "shapes are 28 primitives for Embree (its sphere primitive for the spheres, the box as 12" \
+       "triangles); the meshes are closed UV spheres whose vertices Perlin noise pushes along the radius," \
+       "in a closed room of 12 triangles. Primary rays go through a pinhole camera one a pixel, in" \
+       "4×4-pixel blocks (traced one by one, and as one 16-ray packet a block: wsd's" \
+       "\`intersect_packet\`, Embree's \`rtcIntersect16\`); shadow rays from each primary hit to a random" \
+       "point of a square area light; diffuse rays from each primary hit in a cosine-distributed" \
+       "direction about the surface normal (incoherent). Both trace the same float values; secondary" \
+       "origins are wsd's error-bounded offsets. Rates are rays per CPU-second, the median of 5 passes" \
+       "(3 on the largest mesh) taken in turn." \
+       "" "Builds of the meshes (wall times on a busy machine include waiting for a core):" \
+       "" "| scene | triangles | wsd build, 2 threads: wall (CPU) | wsd bytes/triangle (+ mesh data) | Embree build, 2 threads: wall |" \
+       "|---|---:|---:|---:|---:|"
+  awk -F'|' '$1 == "build" && $2 != "cornell" { printf "| %s | %d | %.2f s (%.2f s) | %s (+ %s) | %.2f s |\n", $2, $3, $4, $5, $6, $7, $8 }' "$f" >>"$page"
+  para "" "| scene | rays | count | wsd M/CPU-s | Embree M/CPU-s | wsd / Embree | rays whose hits differ: why |" \
+       "|---|---|---:|---:|---:|---:|---|"
+  awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s | %d: %s |\n", $2, $3, $7, $4, $5, $6, $8, $9 }' "$f" >>"$page"
+  local tol; tol=$(awk '/^Embree/ { for (i = 1; i < NF; i++) if ($i == "tolerance") { v = $(i + 1); sub(/,$/, "", v); print v; exit } }' "$f")
+  para "" "A hit agrees when it is on the same primitive (any of a box's triangles counts as the box) at" \
+       "distances apart by at most $tol of the scale float arithmetic works at along the ray (the" \
+       "distance travelled plus the origin's distance from the world's origin); shadow rays agree when" \
+       "both say occluded or both say not. Why they differ: *tie*, two primitives at the same distance" \
+       "(a shared edge or vertex); *origin*, one side hits the surface the ray leaves (within 10⁻⁵ of" \
+       "the scene's size from its origin); *edge*, the nearer hit lies within $tol of that scale from" \
+       "an edge of its triangle or box, which the other side missed; *grazing*, the same for the" \
+       "silhouette of a sphere; *t*, the same primitive at distances further apart; *other*, none of" \
+       "these. \"Nearer hit\" says whose hit (or occluder) is the nearer or the only one: where it is" \
+       "Embree's at the origin, Embree hit the surface the ray leaves; where it is wsd's at an edge," \
+       "Embree's ray passed between two triangles that share that edge."
+}
+
 # ---------------------------------------------------------------- CSG
 csg_table() {
   section "CSG: cost per ray beside the sphere's"
@@ -379,7 +428,7 @@ parse_table() {
 }
 
 # ---------------------------------------------------------------- the page
-sections=(cornell adaptive bench threads mesh primitives csg instances baseline parse)
+sections=(cornell adaptive bench threads mesh embree primitives csg instances baseline parse)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done
