@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "lang/ast.h"
+#include "lang/ast_equal.h"
 #include "lang/lexer.h"
 #include "lang/parser.h"
 
@@ -421,21 +422,6 @@ std::string Layout::run() {
     return out;
 }
 
-// The AST dump without its @LINE:COL positions.
-std::string without_positions(const std::string& dump) {
-    std::string out;
-    out.reserve(dump.size());
-    for (size_t i = 0; i < dump.size(); ++i) {
-        if (dump[i] == '@' && i + 1 < dump.size() && dump[i + 1] >= '0' && dump[i + 1] <= '9') {
-            while (i + 1 < dump.size() && ((dump[i + 1] >= '0' && dump[i + 1] <= '9') || dump[i + 1] == ':'))
-                ++i;
-            continue;
-        }
-        out += dump[i];
-    }
-    return out;
-}
-
 std::vector<std::string_view> comment_texts(uint32_t file, std::string_view text) {
     Lexer lexer(file, text, nullptr);
     std::vector<Span> comments;
@@ -466,9 +452,7 @@ std::optional<std::string> format_source(uint32_t file, const SourceManager& sou
     const uint32_t check = check_sources.add(source.path, out);
     Diagnostics check_diags;
     const Program reparsed = parse(check, check_sources, check_diags);
-    const bool same = !check_diags.has_errors() &&
-                      without_positions(print_ast(reparsed, check_sources)) ==
-                          without_positions(print_ast(program, sources)) &&
+    const bool same = !check_diags.has_errors() && same_ast(reparsed, program) &&
                       comment_texts(check, check_sources.file(check).text) == comment_texts(file, text);
     if (!same) {
         diags.error({file, 0, 0},

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "lang/ast_equal.h"
 #include "lang/format.h"
 #include "lang/lexer.h"
 #include "lang/parser.h"
@@ -252,4 +253,29 @@ TEST_CASE("fmt refuses a file with syntax errors with the parser's diagnostics",
     parse(sources.add("test.wsd", text), sources, diags);
     CHECK(f.errors == format_diagnostics(diags, sources));
     CHECK(f.errors.find("test.wsd:") != std::string::npos);
+}
+
+TEST_CASE("same_ast ignores positions and nothing else", "[format]") {
+    const auto same = [](const std::string& a, const std::string& b) {
+        SourceManager sources;
+        Diagnostics diags;
+        const Program pa = parse(sources.add("a.wsd", a), sources, diags);
+        const Program pb = parse(sources.add("b.wsd", b), sources, diags);
+        REQUIRE_FALSE(diags.has_errors());
+        return same_ast(pa, pb);
+    };
+    CHECK(same("let a = 1 + 2 * 3", "let   a=1+2*3\n"));
+    CHECK(same("mesh { vertices [<0,0,0>, <1,0,0>, <0,1,0>] faces [<0,1,2>] }",
+               "mesh {\n vertices [<0, 0, 0>,\n <1, 0, 0>, <0, 1, 0>]\n faces [<0, 1, 2>]\n}"));
+    CHECK(same("let a = 1.50", "let a = 1.5"));  // the same number
+    CHECK_FALSE(same("let a = 1 + 2 * 3", "let a = (1 + 2) * 3"));
+    CHECK_FALSE(same("let a = 1 - 2", "let a = 1 + 2"));
+    CHECK_FALSE(same("let a = 1", "let b = 1"));
+    CHECK_FALSE(same("let a = \"x\"", "let a = \"y\""));
+    CHECK_FALSE(same("mesh { faces [<0,1,2>] }", "mesh { faces [<0,1,3>] }"));
+    CHECK_FALSE(same("sphere { radius 1 }", "sphere { radius 1  center <0, 0, 0> }"));
+    CHECK_FALSE(same("if a { f(1) } else { f(2) }", "if a { f(1) }"));
+    CHECK_FALSE(same("fn f(a, b = 2) { return a }", "fn f(a, b = 3) { return a }"));
+    CHECK_FALSE(same("let a = v.x", "let a = v.y"));
+    CHECK(fmt("let a=(1).x") == "let a = (1).x\n");
 }
