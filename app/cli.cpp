@@ -204,7 +204,9 @@ int run_cli(int argc, char** argv) {
     CheckArgs check_args;
     CLI::App* check =
         app.add_subcommand("check", "parse, evaluate, load referenced files and validate; render nothing");
-    check->add_option("FILE", check_args.files, "scene files (.wsd) or fragments (.wsdi); - = stdin")
+    check
+        ->add_option("FILE", check_args.files,
+                     "scene files (.wsd), fragments (.wsdi) or directories; - = stdin")
         ->required();
     check->add_flag("--effects", check_args.effects,
                     "list the effects the scene uses and the objects that call for each");
@@ -214,14 +216,6 @@ int run_cli(int argc, char** argv) {
             "--format", [&](const std::string& f) { check_args.json = f == "json"; },
             "text (default) or json: the diagnostics as one JSON array on stdout")
         ->check(CLI::IsMember({"text", "json"}));
-
-    FmtArgs fmt_args;
-    CLI::App* fmt = app.add_subcommand("fmt", "print the canonical layout of scene files (-i: rewrite them)");
-    fmt->add_option("FILE", fmt_args.files, "files (.wsd, .wsdi) or directories; - = stdin")->required();
-    CLI::Option* fmt_in_place =
-        fmt->add_flag("-i,--in-place", fmt_args.in_place, "rewrite the files that are not canonical");
-    fmt->add_flag("--check", fmt_args.check, "change nothing; name the files that are not canonical")
-        ->excludes(fmt_in_place);
 
     AstArgs ast_args;
     CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
@@ -244,6 +238,14 @@ int run_cli(int argc, char** argv) {
 
     BenchArgs bench_args;
     CLI::App* bench = add_bench_command(app, bench_args);
+
+    FmtArgs fmt_args;
+    CLI::App* fmt = app.add_subcommand("fmt", "print the canonical layout of scene files (-i: rewrite them)");
+    fmt->add_option("FILE", fmt_args.files, "files (.wsd, .wsdi) or directories; - = stdin")->required();
+    CLI::Option* fmt_in_place =
+        fmt->add_flag("-i,--in-place", fmt_args.in_place, "rewrite the files that are not canonical");
+    fmt->add_flag("--check", fmt_args.check, "change nothing; name the files that are not canonical")
+        ->excludes(fmt_in_place);
 
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
