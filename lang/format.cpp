@@ -299,6 +299,7 @@ public:
     Layout(std::string_view text, std::vector<Element> elements) : text_(text), el_(std::move(elements)) {
         const size_t n = el_.size();
         breaks_.assign(n, 0);
+        lines_prefix_.reserve(n);
         comments_.assign(n, 0);
         width_.assign(n, 0);
         match_.assign(n, 0);
@@ -308,13 +309,14 @@ public:
             if (k > 0) {
                 breaks_[k] = line_breaks(text_, el_[k - 1].end, e.begin);
             }
-            const uint64_t before = k > 0 ? width_[k - 1] : 0;
-            width_[k] = before + (k > 0 ? spacing(el_[k - 1], e).size() : 0) + (e.end - e.begin);
+            const uint32_t before = k > 0 ? width_[k - 1] : 0;
+            width_[k] =
+                before + static_cast<uint32_t>(k > 0 ? spacing(el_[k - 1], e).size() : 0) + (e.end - e.begin);
             comments_[k] = (k > 0 ? comments_[k - 1] : 0) + (e.comment ? 1 : 0);
             lines_prefix_.push_back((k > 0 ? lines_prefix_[k - 1] : 0) + breaks_[k]);
             if (e.is(TokenKind::LBrace)) open.push_back(k);
             if (e.is(TokenKind::RBrace) && !open.empty()) {
-                match_[open.back()] = k;
+                match_[open.back()] = static_cast<uint32_t>(k);
                 open.pop_back();
             }
         }
@@ -336,7 +338,7 @@ private:
         const size_t j = match_[k];
         if (j <= k) return false;
         if (lines_prefix_[j] != lines_prefix_[k] || comments_[j] != comments_[k]) return false;
-        const uint64_t width = width_[j] - width_[k] + (el_[k].end - el_[k].begin);
+        const uint64_t width = uint32_t(width_[j] - width_[k]) + (el_[k].end - el_[k].begin);
         return column + width <= column_limit;
     }
 
@@ -344,11 +346,13 @@ private:
 
     std::string_view text_;
     std::vector<Element> el_;
+    // Per element k (offsets and widths fit in 32 bits: the lexer reads at most 4 GiB).
     std::vector<uint32_t> breaks_;        // line breaks between element k - 1 and k
-    std::vector<uint64_t> lines_prefix_;  // their running sum
+    std::vector<uint32_t> lines_prefix_;  // their running sum
     std::vector<uint32_t> comments_;      // comments among elements 0..k
-    std::vector<uint64_t> width_;         // one-line width of elements 0..k
-    std::vector<size_t> match_;           // for a '{', its '}'
+    std::vector<uint32_t> width_;         // one-line width of elements 0..k (wrapping is harmless:
+                                          // only differences within one block are used)
+    std::vector<uint32_t> match_;         // for a '{', its '}'
 };
 
 std::string Layout::run() {
