@@ -1,11 +1,13 @@
 // Formatter tests: on every golden and example file that parses, the output is a fixed point,
 // parses to the same AST apart from positions and keeps every comment in order; the same holds
-// for each file squeezed onto as few lines as possible and spread one token per line; the style
-// itself is pinned on small cases; files with syntax errors give the parser's diagnostics.
+// for each file squeezed onto as few lines as possible, spread one token per line, and with its
+// whitespace scrambled and comments added; the style itself is pinned on small cases; files with
+// syntax errors give the parser's diagnostics.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -112,6 +114,26 @@ std::string relayout(const std::string& text, bool one_per_line) {
     return out + "\n";
 }
 
+// `text` with each run of whitespace between its pieces replaced at random (seeded): by a space,
+// a line break, blank lines, or with a block or line comment added; a line comment keeps its line
+// break after it.
+std::string scramble(const std::string& text, std::mt19937& rng) {
+    static const char* const fillers[] = {" ",         "\n",      "\n\n\n",
+                                          " /* c */ ", " // c\n", "\n/* two\n   lines */\n"};
+    const std::vector<Piece> ps = pieces(text);
+    std::string out;
+    for (size_t i = 0; i < ps.size(); ++i) {
+        if (i > 0 && ps[i].begin > ps[i - 1].end) {
+            std::string gap = fillers[std::uniform_int_distribution<size_t>(0, 5)(rng)];
+            const bool after_line_comment = ps[i - 1].comment && text[ps[i - 1].begin + 1] == '/';
+            if (after_line_comment && gap.find('\n') == std::string::npos) gap += "\n";
+            out += gap;
+        }
+        out += text.substr(ps[i].begin, ps[i].end - ps[i].begin);
+    }
+    return out;
+}
+
 // The formatter's promises for one input: it formats, to a fixed point, with the same AST and
 // the same comments.
 void check_promises(const std::string& input, const std::string& name) {
@@ -159,6 +181,20 @@ TEST_CASE("fmt on every file squeezed onto few lines and spread one token a line
         for (const bool spread : {false, true}) {
             const std::string variant = relayout(text, spread);
             INFO((spread ? "spread: " : "squeezed: ") + path.string());
+            REQUIRE(ast_without_positions(variant) == ast_without_positions(text));
+            check_promises(variant, path.string());
+        }
+    }
+}
+
+TEST_CASE("fmt on every file with its whitespace scrambled and comments added", "[format]") {
+    std::mt19937 rng(20261127);
+    for (const fs::path& path : scene_files()) {
+        const std::string text = read_file(path);
+        if (!parses(text)) continue;
+        for (int round = 0; round < 2; ++round) {
+            const std::string variant = scramble(text, rng);
+            INFO("scrambled: " + path.string() + "\n" + variant);
             REQUIRE(ast_without_positions(variant) == ast_without_positions(text));
             check_promises(variant, path.string());
         }
