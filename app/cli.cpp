@@ -204,11 +204,18 @@ int run_cli(int argc, char** argv) {
     CheckArgs check_args;
     CLI::App* check =
         app.add_subcommand("check", "parse, evaluate, load referenced files and validate; render nothing");
-    check->add_option("FILE", check_args.files, "scene files (.wsd) or fragments (.wsdi); - = stdin")
+    check
+        ->add_option("FILE", check_args.files,
+                     "scene files (.wsd), fragments (.wsdi) or directories; - = stdin")
         ->required();
     check->add_flag("--effects", check_args.effects,
                     "list the effects the scene uses and the objects that call for each");
     add_scene_input(*check, check_args.input);
+    check
+        ->add_option_function<std::string>(
+            "--format", [&](const std::string& f) { check_args.json = f == "json"; },
+            "text (default) or json: the diagnostics as one JSON array on stdout")
+        ->check(CLI::IsMember({"text", "json"}));
 
     AstArgs ast_args;
     CLI::App* ast = app.add_subcommand("ast", "print the abstract syntax tree");
@@ -231,6 +238,14 @@ int run_cli(int argc, char** argv) {
 
     BenchArgs bench_args;
     CLI::App* bench = add_bench_command(app, bench_args);
+
+    FmtArgs fmt_args;
+    CLI::App* fmt = app.add_subcommand("fmt", "print the canonical layout of scene files (-i: rewrite them)");
+    fmt->add_option("FILE", fmt_args.files, "files (.wsd, .wsdi) or directories; - = stdin")->required();
+    CLI::Option* fmt_in_place =
+        fmt->add_flag("-i,--in-place", fmt_args.in_place, "rewrite the files that are not canonical");
+    fmt->add_flag("--check", fmt_args.check, "change nothing; name the files that are not canonical")
+        ->excludes(fmt_in_place);
 
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
@@ -255,6 +270,7 @@ int run_cli(int argc, char** argv) {
     if (*help) return print_help(app, help_topic);
     if (*check) return run_check(check_args);
     if (*ast) return run_ast(ast_args);
+    if (*fmt) return run_fmt(fmt_args);
     if (*render) {
         render_args.overrides = render_refs.overrides();
         return run_render(render_args);

@@ -1,12 +1,14 @@
 // `wsd check FILE...`: runs every stage but rendering on each file (a `.wsdi` as a fragment, with
-// no camera required) and prints `FILE: ok — …` for each that passes. The status is the worst
-// over all files.
+// no camera required) and prints `FILE: ok — …` for each that passes; with --format json, one
+// JSON array of every file's diagnostics instead. The status is the worst over all files.
 #include <algorithm>
 #include <iostream>
 
+#include "app/check_json.h"
 #include "app/commands.h"
 #include "app/effects_report.h"
 #include "app/exit_codes.h"
+#include "app/file_args.h"
 #include "app/io_util.h"
 
 namespace wsd::app {
@@ -31,11 +33,36 @@ int rank(int status) {
     }
 }
 
+// One file's check for --format json: its result object (the diagnostics are not printed).
+int check_json(const std::string& path, const lang::LoadOptions& options, bool warnings,
+               nlohmann::ordered_json& results) {
+    std::string text, error;
+    if (!read_input_file(path, text, error)) {
+        results.push_back(unreadable_file_json(display_path(path), error));
+        return exit_code::io;
+    }
+    lang::SourceManager sources;
+    lang::Diagnostics all;
+    const std::optional<lang::LoadedScene> scene =
+        lang::load_scene(display_path(path), std::move(text), sources, all, options);
+    lang::Diagnostics shown;
+    for (const lang::Diagnostic& d : all.all()) {
+        if (d.severity == lang::Severity::Error)
+            shown.error(d.span, d.message) = d;
+        else if (warnings)
+            shown.warning(d.span, d.message) = d;
+    }
+    const bool ok = !all.has_errors() && scene.has_value();
+    results.push_back(check_result_json(display_path(path), ok, shown, sources));
+    return ok ? exit_code::ok : exit_code::input_error;
+}
+
 }  // namespace
 
 int run_check(const CheckArgs& args) {
     int worst = exit_code::ok;
-    for (const std::string& path : args.files) {
+    nlohmann::ordered_json results = nlohmann::ordered_json::array();
+    for (const std::string& path : expand_scene_paths(args.files)) {
         // Each file reads the defines afresh: one that a file does not use is a warning for it.
         lang::ParamTable params;
         if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;
@@ -43,6 +70,12 @@ int run_check(const CheckArgs& args) {
         options.fragment = is_fragment(path);
         options.build = !options.fragment;
         options.params = &params;
+        if (args.json) {
+            const int status = check_json(path, options, !args.input.no_warnings, results);
+            if (status == exit_code::ok) warn_unread_defines(params, args.input);
+            if (rank(status) > rank(worst)) worst = status;
+            continue;
+        }
         lang::SourceManager sources;
         std::optional<lang::LoadedScene> scene;
         const int status = load_scene_file(path, options, sources, scene, !args.input.no_warnings);
@@ -62,6 +95,7 @@ int run_check(const CheckArgs& args) {
         std::cout << std::flush;
         if (rank(status) > rank(worst)) worst = status;
     }
+    if (args.json) std::cout << results.dump(2) << std::endl;
     return worst;
 }
 

@@ -14,11 +14,19 @@ namespace wsd::app {
 int run_cli(int argc, char** argv);
 
 struct CheckArgs {
-    std::vector<std::string> files;
+    std::vector<std::string> files;  // a directory: its .wsd and .wsdi files
     bool effects = false;
+    bool json = false;  // --format json
     SceneInputArgs input;
 };
 int run_check(const CheckArgs& args);
+
+struct FmtArgs {
+    std::vector<std::string> files;  // a directory: its .wsd and .wsdi files
+    bool in_place = false;           // -i
+    bool check = false;              // --check
+};
+int run_fmt(const FmtArgs& args);
 
 struct AstArgs {
     std::string file;

@@ -1,11 +1,13 @@
 // libFuzzer target for the language front end: arbitrary bytes through the source manager, the
-// lexer and parser, the AST printer and the diagnostics printer, then through load_scene without
+// lexer and parser, the AST printer and the diagnostics printer, the formatter (which must format
+// every file that parses, and its own output to the same text), then through load_scene without
 // building (evaluation and lowering). Built with -DWSD_FUZZ=ON and clang; seed it with the
 // examples and golden files: wsd_fuzz_lang -max_total_time=60 corpus/ examples/ tests/golden/syntax/
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "lang/format.h"
 #include "lang/load.h"
 #include "lang/parser.h"
 
@@ -18,6 +20,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const wsd::lang::Program program = wsd::lang::parse(file, sources, diags);
         (void)wsd::lang::print_ast(program, sources);
         (void)wsd::lang::format_diagnostics(diags, sources);
+        wsd::lang::Diagnostics format_diags;
+        const std::optional<std::string> formatted = wsd::lang::format_source(file, sources, format_diags);
+        if (formatted.has_value() == diags.has_errors()) __builtin_trap();  // formats exactly what parses
+        if (formatted) {
+            const uint32_t again_file = sources.add("fuzz-formatted.wsd", *formatted);
+            const std::optional<std::string> again =
+                wsd::lang::format_source(again_file, sources, format_diags);
+            if (!again || *again != *formatted) __builtin_trap();  // idempotent
+        }
     }
     {
         // A directory that does not exist: relative includes and files resolve to nothing.

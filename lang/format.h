@@ -13,7 +13,6 @@ namespace wsd::lang {
 
 // The canonical form of source file `file`, or nullopt (with the diagnostics `wsd check` would
 // give for its syntax) when it does not parse.
-std::optional<std::string> format_source(uint32_t file, const SourceManager& sources,
-                                         Diagnostics& diags);
+std::optional<std::string> format_source(uint32_t file, const SourceManager& sources, Diagnostics& diags);
 
 }  // namespace wsd::lang

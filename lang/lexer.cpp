@@ -273,10 +273,13 @@ Token Lexer::next() {
             const unsigned char c = at(pos_);
             if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
                 ++pos_;
-            } else if (c == '/' && at(pos_ + 1) == '/') {
-                line_comment();
-            } else if (c == '/' && at(pos_ + 1) == '*') {
-                block_comment();
+            } else if (c == '/' && (at(pos_ + 1) == '/' || at(pos_ + 1) == '*')) {
+                const uint32_t begin = pos_;
+                if (at(pos_ + 1) == '/')
+                    line_comment();
+                else
+                    block_comment();
+                if (comments_) comments_->push_back({file_, begin, pos_});
             } else {
                 break;
             }

@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "lang/diagnostics.h"
 #include "lang/token.h"
@@ -23,6 +24,8 @@ public:
     uint32_t position() const { return pos_; }
     std::string_view text() const { return text_; }
     std::string_view lexeme(const Token& t) const { return text_.substr(t.begin, t.end - t.begin); }
+    // Comments skipped from now on are appended to `out` (the formatter keeps them); null: none.
+    void record_comments(std::vector<Span>* out) { comments_ = out; }
 
 private:
     Token make(TokenKind kind, uint32_t begin) const { return {kind, begin, pos_, 0}; }
@@ -45,6 +48,7 @@ private:
     uint32_t pos_ = 0;
     uint32_t end_ = 0;
     uint32_t reported_until_ = 0;  // errors starting below this offset were already reported
+    std::vector<Span>* comments_ = nullptr;
 };
 
 // The decoded contents of a string literal (with its quotes); lenient about errors the lexer

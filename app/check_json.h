@@ -1,0 +1,20 @@
+// `wsd check --format json`: one file's diagnostics as the JSON object the command prints
+// (docs/wsd-cli.md): lines and columns 1-based, the end exclusive, notes with the include chain.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "lang/diagnostics.h"
+#include "lang/source.h"
+
+namespace wsd::app {
+
+// {"file", "ok", "diagnostics": [...]} for the diagnostics of one file's check.
+nlohmann::ordered_json check_result_json(const std::string& file, bool ok, const lang::Diagnostics& diags,
+                                         const lang::SourceManager& sources);
+
+// The object for a file that could not be read: one error without a position.
+nlohmann::ordered_json unreadable_file_json(const std::string& file, const std::string& message);
+
+}  // namespace wsd::app
