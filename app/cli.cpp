@@ -232,6 +232,8 @@ int run_cli(int argc, char** argv) {
     BenchArgs bench_args;
     CLI::App* bench = add_bench_command(app, bench_args);
 
+    CLI::App* lsp = app.add_subcommand("lsp", "a language server on stdin/stdout (Language Server Protocol)");
+
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
     help->add_option("COMMAND", help_topic, "the command to explain");
@@ -262,6 +264,7 @@ int run_cli(int argc, char** argv) {
     if (*diff) return run_diff(diff_args);
     if (*merge) return run_merge(merge_args);
     if (*bench) return run_bench(bench_args);
+    if (*lsp) return run_lsp();
     return exit_code::usage;
 }
 
