@@ -361,6 +361,28 @@ parse_table() {
        "| OBJ \`f a/a/a\` with \`vt\` and \`vn\`, $(field "$tmp/obj.txt" '^f v\/vt' 7) MB | $(field "$tmp/obj.txt" '^f v\/vt' 11) s wall, $(awk '/^f v\/vt/ { print $(NF-2); exit }' "$tmp/obj.txt") s CPU |"
 }
 
+lsp_table() {
+  section "Language server"
+  local lsp_args=(--runs 5) label="about 1,000,000"
+  ((quick)) && lsp_args=(--runs 1 --triangles 20000) && label="about 20,000"
+  log "bench/lsp_latency.py ${lsp_args[*]}"
+  python3 bench/lsp_latency.py "$wsd" "${lsp_args[@]}" >"$tmp/lsp.txt"
+  # row NAME: the figures of one scene's line.
+  row() {
+    awk -v n="$1" '$1 == n { for (i = 1; i < NF; i++) v[$i] = $(i + 1)
+      printf "| `%s`%s | %s MB | %s ms | %s ms (%s ms) |\n", n, ($2 == "-" ? "" : ", inline mesh of " $2 " triangles"), $4,
+             v["didOpen"], v["median"], v["range"] }' "$tmp/lsp.txt"
+  }
+  para "\`bench/lsp_latency.py\`: \`wsd lsp\` driven over a pipe; the time from sending \`textDocument/didChange\`" \
+       "(the whole text, one comment changed) to receiving that version's \`publishDiagnostics\`, which runs the" \
+       "whole check of \`wsd check\` (parse, evaluate, build) on the unsaved text; median and range over" \
+       "$(awk '{ for (i = 1; i < NF; i++) if ($i == "runs") { print $(i + 1); exit } }' "$tmp/lsp.txt") change(s)." \
+       "The inline mesh ($label triangles) is generated." \
+       "" \
+       "| scene | text | didOpen to diagnostics | didChange to diagnostics, median (range) |" "|---|---:|---:|---:|" \
+       "$(row cornell.wsd)" "$(row mesh.wsd)"
+}
+
 # ---------------------------------------------------------------- the page
 cornell_table
 adaptive_table
@@ -372,6 +394,7 @@ csg_table
 instances_table
 baseline_table
 parse_table
+lsp_table
 load_after=$(loadavg)
 
 model=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
