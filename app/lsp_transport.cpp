@@ -102,14 +102,7 @@ Reader::Result Reader::read(std::string& body) {
         return Result::BadHeader;
     }
     if (length > max_body) {
-        // Skip the body without keeping it.
-        size_t left = length;
-        while (left > 0) {
-            if (pos_ == buffer_.size() && !fill()) return Result::End;
-            const size_t take = std::min(left, buffer_.size() - pos_);
-            pos_ += take;
-            left -= take;
-        }
+        // Not read: what follows is scanned for the next header like any garbage.
         body = "a message of " + std::to_string(length) + " bytes, over the limit";
         return Result::BadHeader;
     }

@@ -18,7 +18,8 @@ public:
         End,        // end of input
     };
     // Reads the next message. Garbage before a header is skipped up to the next `Content-Length:`;
-    // a body shorter than announced at the end of input is End.
+    // a body shorter than announced at the end of input is End; one longer than max_body is a
+    // BadHeader, and its bytes are scanned as garbage.
     Result read(std::string& body);
     // Whether a byte is ready without blocking (in the buffer or on the descriptor).
     bool input_pending();
