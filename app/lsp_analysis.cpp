@@ -3,9 +3,11 @@
 #include "app/lsp_analysis.h"
 
 #include <algorithm>
+#include <cctype>
 
 #include "lang/format.h"
 #include "lang/load.h"
+#include "render/file_util.h"
 
 namespace wsd::app::lsp {
 
@@ -136,7 +138,7 @@ const ParsedFile& Document::syntax() {
     return *parsed;
 }
 
-json diagnostics(const Document& doc, Encoding enc) {
+json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text) {
     SourceManager sources;
     Diagnostics diags;
     ParamTable params;
@@ -144,6 +146,20 @@ json diagnostics(const Document& doc, Encoding enc) {
     options.fragment = doc.fragment;
     options.build = !doc.fragment;
     options.params = &params;
+    options.read_include = [&](const std::string& path, std::string& text, std::string& reason) {
+        if (std::optional<std::string> t = open_text(path)) {
+            text = std::move(*t);
+            return true;
+        }
+        render::FileBytes bytes;  // as the interpreter reads files, with its reasons
+        if (!render::read_whole_file(path, bytes, reason)) {
+            if (!reason.empty())
+                reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
+            return false;
+        }
+        text.assign(bytes.view());
+        return true;
+    };
     json out = json::array();
     const LineIndex index(doc.text);
     try {

@@ -28,7 +28,8 @@ nlohmann::json range_json(const LineIndex& index, uint32_t begin, uint32_t end, 
 
 // Every diagnostic `wsd check` gives for the document's text; those in included files are shown at
 // the `include` line of the document, with the chain of includes in the message.
-nlohmann::json diagnostics(const Document& doc, Encoding enc);
+// Included files are an open document's unsaved text (`open_text`), else read from disk.
+nlohmann::json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text);
 
 nlohmann::json hover(Document& doc, Position at, Encoding enc, const FileReader& reader);
 nlohmann::json completion(Document& doc, Position at, Encoding enc, const FileReader& reader);

@@ -3,6 +3,7 @@
 // thread, as `wsd check` runs scenes.
 #include "app/lsp_server.h"
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -34,7 +35,7 @@ Position position_of(const json& params) {
 
 json capabilities(Encoding enc) {
     return {{"positionEncoding", enc == Encoding::Utf32 ? "utf-32" : "utf-16"},
-            {"textDocumentSync", {{"openClose", true}, {"change", 1}}},
+            {"textDocumentSync", {{"openClose", true}, {"change", 1}, {"save", {{"includeText", false}}}}},
             {"hoverProvider", true},
             {"completionProvider", {{"triggerCharacters", json::array()}}},
             {"definitionProvider", true},
@@ -44,10 +45,16 @@ json capabilities(Encoding enc) {
 
 }  // namespace
 
+std::optional<std::string> Server::open_document_text(const std::string& path) const {
+    const std::filesystem::path wanted = std::filesystem::path(path).lexically_normal();
+    for (const auto& [uri, doc] : documents_)
+        if (std::filesystem::path(doc.path).lexically_normal() == wanted) return doc.text;
+    return std::nullopt;
+}
+
 std::optional<std::string> Server::read_file(const std::string& path) const {
     // An open document's unsaved text, else the file on disk.
-    for (const auto& [uri, doc] : documents_)
-        if (doc.path == path) return doc.text;
+    if (std::optional<std::string> text = open_document_text(path)) return text;
     std::ifstream in(path, std::ios::binary);
     if (!in) return std::nullopt;
     std::ostringstream text;
@@ -78,7 +85,8 @@ void Server::publish(const std::string& uri) {
     if (it != documents_.end()) {
         const Document& doc = it->second;
         const Encoding enc = encoding_;
-        lang::run_on_large_stack([&] { diags = diagnostics(doc, enc); });
+        const FileReader open_text = [this](const std::string& path) { return open_document_text(path); };
+        lang::run_on_large_stack([&] { diags = diagnostics(doc, enc, open_text); });
     }
     json params = {{"uri", uri}, {"diagnostics", std::move(diags)}};
     if (it != documents_.end()) params["version"] = it->second.version;
@@ -97,6 +105,17 @@ void Server::publish_pending() {
     }
 }
 
+void Server::changed(const std::string& uri) {
+    pending_.insert(uri);
+    // Open documents that may include this one are checked again too (those that name its file).
+    auto it = documents_.find(uri);
+    if (it == documents_.end()) return;
+    const std::string name = std::filesystem::path(it->second.path).filename().string();
+    if (name.empty()) return;
+    for (const auto& [other, doc] : documents_)
+        if (other != uri && doc.text.find(name) != std::string::npos) pending_.insert(other);
+}
+
 void Server::notification(const std::string& method, const json& params) {
     if (method == "exit") {
         exiting_ = true;
@@ -113,7 +132,7 @@ void Server::notification(const std::string& method, const json& params) {
         doc.fragment = ends_with(doc.path, ".wsdi") || td.value("languageId", "") == "wsdi";
         const std::string uri = doc.uri;
         documents_[uri] = std::move(doc);
-        pending_.insert(uri);
+        changed(uri);
     } else if (method == "textDocument/didChange") {
         Document& doc = document(params);
         const json& changes = params.at("contentChanges");
@@ -123,7 +142,9 @@ void Server::notification(const std::string& method, const json& params) {
         doc.version = params.at("textDocument").value("version", doc.version + 1);
         doc.parsed.reset();
         doc.top_level_types.reset();
-        pending_.insert(doc.uri);
+        changed(doc.uri);
+    } else if (method == "textDocument/didSave") {
+        changed(document(params).uri);
     } else if (method == "textDocument/didClose") {
         const std::string uri = params.at("textDocument").at("uri").get<std::string>();
         documents_.erase(uri);
@@ -133,7 +154,7 @@ void Server::notification(const std::string& method, const json& params) {
               {"method", "textDocument/publishDiagnostics"},
               {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});
     }
-    // Anything else ($/cancelRequest, initialized, didSave, ...) needs nothing.
+    // Anything else ($/cancelRequest, initialized, ...) needs nothing.
 }
 
 json Server::request(const std::string& method, const json& params) {

@@ -23,11 +23,13 @@ private:
     void handle(const std::string& body);
     nlohmann::json request(const std::string& method, const nlohmann::json& params);
     void notification(const std::string& method, const nlohmann::json& params);
+    void changed(const std::string& uri);  // its diagnostics, and those of documents naming it, are due
     void publish(const std::string& uri);
     void publish_pending();
     void send(const nlohmann::json& message);
     void reply_error(const nlohmann::json& id, int code, const std::string& message);
     Document& document(const nlohmann::json& params);
+    std::optional<std::string> open_document_text(const std::string& path) const;
     std::optional<std::string> read_file(const std::string& path) const;
 
     Reader reader_;

@@ -188,6 +188,18 @@ with tempfile.TemporaryDirectory() as tmp:
               and d[0]["range"]["end"] == {"line": 0, "character": col + 4}, "columns in " + enc, d)
         check(c.close() == 0, "exit status after " + enc)
 
+    # An included file's unsaved text is what the including document is checked with.
+    c = Client(WSD, cwd=tmp)
+    c.initialize()
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": uri, "languageId": "wsd", "version": 1, "text": FIXED}})
+    check(c.wait_diagnostics(uri, 1)["diagnostics"] == [], "open: no diagnostics")
+    inc_uri = uri_of(os.path.join(tmp, "inc.wsdi"))
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": inc_uri, "languageId": "wsd", "version": 1,
+                                                       "text": "let Q = 2\n"}})
+    d = c.wait_diagnostics(uri)["diagnostics"]
+    check(len(d) == 1 and "twice" in d[0]["message"], "an open include's unsaved text is used", d)
+    c.close()
+
     # Exit without shutdown: status 1.
     c = Client(WSD, cwd=tmp)
     c.initialize()
