@@ -104,7 +104,8 @@ std::string syntax_type(const Expr& e) {
 }
 
 // The types of the scene's top-level names, from running it (without lowering's build).
-std::map<std::string, std::string> evaluate_top_level(const Document& doc, Workspace& ws) {
+std::map<std::string, std::string> evaluate_top_level(const Document& doc, Workspace& ws,
+                                                      const FileReader& reader) {
     std::map<std::string, std::string> out;
     SourceManager sources;
     Diagnostics diags;
@@ -113,6 +114,14 @@ std::map<std::string, std::string> evaluate_top_level(const Document& doc, Works
     if (diags.has_errors()) return out;
     SceneBuilder builder(file);
     Interpreter interpreter(sources, diags, builder);
+    // Includes as the server sees them: open documents' unsaved text, else the files on disk.
+    const IncludeReader read = [&](const std::string& path, std::string& text, std::string& reason) {
+        std::optional<std::string> t = reader(path);
+        if (!t) reason = "it cannot be read";
+        if (t) text = std::move(*t);
+        return t.has_value();
+    };
+    interpreter.set_file_reader(&read);
     interpreter.run(program);
     for (const Definition& d : ws.visible_at(UINT32_MAX))
         if (d.top_level)
@@ -121,7 +130,7 @@ std::map<std::string, std::string> evaluate_top_level(const Document& doc, Works
     return out;
 }
 
-std::string name_help(Document& doc, Workspace& ws, const Definition& d) {
+std::string name_help(Document& doc, Workspace& ws, const Definition& d, const FileReader& reader) {
     std::string out = "```wsd\n";
     const FnStmt* fn = d.kind == Definition::Kind::Fn ? &d.stmt->as<FnStmt>() : nullptr;
     std::string type;
@@ -139,7 +148,7 @@ std::string name_help(Document& doc, Workspace& ws, const Definition& d) {
         if (d.top_level) {
             if (!doc.top_level_types)
                 doc.top_level_types =
-                    std::make_shared<std::map<std::string, std::string>>(evaluate_top_level(doc, ws));
+                    std::make_shared<std::map<std::string, std::string>>(evaluate_top_level(doc, ws, reader));
             auto it = doc.top_level_types->find(std::string(d.name));
             if (it != doc.top_level_types->end()) type = it->second;
         }
@@ -184,15 +193,17 @@ json hover(Document& doc, Position at, Encoding enc, const FileReader& reader) {
     Workspace ws(doc.parsed, reader);
     if (c.defining) {
         for (const Definition& d : ws.visible_at(c.defining->span.end + 1))
-            if (d.stmt == c.defining) return hover_json(name_help(doc, ws, d), index, d.name_span, enc);
+            if (d.stmt == c.defining)
+                return hover_json(name_help(doc, ws, d, reader), index, d.name_span, enc);
         Workspace inner(doc.parsed, reader);
         for (const Definition& d : inner.visible_at(offset))
-            if (d.stmt == c.defining) return hover_json(name_help(doc, ws, d), index, d.name_span, enc);
+            if (d.stmt == c.defining)
+                return hover_json(name_help(doc, ws, d, reader), index, d.name_span, enc);
         return nullptr;
     }
     if (!c.name.empty())
         if (const std::optional<Definition> d = ws.resolve(c.name, offset))
-            return hover_json(name_help(doc, ws, *d), index, c.name_span, enc);
+            return hover_json(name_help(doc, ws, *d, reader), index, c.name_span, enc);
     if (c.include) {
         const std::string path = ws.include_path(file, *c.include);
         return hover_json("Includes `" + path + "`" + (ws.included(file, *c.include) ? "" : " (not found)"),

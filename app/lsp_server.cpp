@@ -112,8 +112,11 @@ void Server::changed(const std::string& uri) {
     if (it == documents_.end()) return;
     const std::string name = std::filesystem::path(it->second.path).filename().string();
     if (name.empty()) return;
-    for (const auto& [other, doc] : documents_)
-        if (other != uri && doc.text.find(name) != std::string::npos) pending_.insert(other);
+    for (auto& [other, doc] : documents_) {
+        if (other == uri || doc.text.find(name) == std::string::npos) continue;
+        pending_.insert(other);
+        doc.top_level_types.reset();  // the evaluated types may come from the changed file
+    }
 }
 
 void Server::notification(const std::string& method, const json& params) {
