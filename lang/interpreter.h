@@ -30,7 +30,6 @@ class ParamTable;
 // editor's reader gives its unsaved text. (The same alias is declared in lang/load.h.)
 using IncludeReader = std::function<bool(const std::string& path, std::string& text, std::string& reason)>;
 
-
 struct Limits {
     uint64_t loop_iterations = 100'000'000;      // in total, with one step per function call
     size_t primitives = render::kMaxPrimitives;  // stored: distinct geometry
