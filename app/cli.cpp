@@ -246,6 +246,7 @@ int run_cli(int argc, char** argv) {
         fmt->add_flag("-i,--in-place", fmt_args.in_place, "rewrite the files that are not canonical");
     fmt->add_flag("--check", fmt_args.check, "change nothing; name the files that are not canonical")
         ->excludes(fmt_in_place);
+    CLI::App* lsp = app.add_subcommand("lsp", "a language server on stdin/stdout (Language Server Protocol)");
 
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
@@ -278,6 +279,7 @@ int run_cli(int argc, char** argv) {
     if (*diff) return run_diff(diff_args);
     if (*merge) return run_merge(merge_args);
     if (*bench) return run_bench(bench_args);
+    if (*lsp) return run_lsp();
     return exit_code::usage;
 }
 

@@ -81,4 +81,7 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+// A language server on stdin/stdout; 0 after `shutdown` and `exit`, 1 when input ends without them.
+int run_lsp();
+
 }  // namespace wsd::app

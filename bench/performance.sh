@@ -427,8 +427,30 @@ parse_table() {
        "$(mesh_row '^ply binary' 'PLY, binary little-endian')"
 }
 
+lsp_table() {
+  section "Language server"
+  local lsp_args=(--runs 5) label="about 1,000,000"
+  ((quick)) && lsp_args=(--runs 1 --triangles 20000) && label="about 20,000"
+  log "bench/lsp_latency.py ${lsp_args[*]}"
+  python3 bench/lsp_latency.py "$wsd" "${lsp_args[@]}" >"$tmp/lsp.txt"
+  # row NAME: the figures of one scene's line.
+  row() {
+    awk -v n="$1" '$1 == n { for (i = 1; i < NF; i++) v[$i] = $(i + 1)
+      printf "| `%s`%s | %s MB | %s ms | %s ms (%s ms) |\n", n, ($2 == "-" ? "" : ", inline mesh of " $2 " triangles"), $4,
+             v["didOpen"], v["median"], v["range"] }' "$tmp/lsp.txt"
+  }
+  para "\`bench/lsp_latency.py\`: \`wsd lsp\` driven over a pipe; the time from sending \`textDocument/didChange\`" \
+       "(the whole text, one comment changed) to receiving that version's \`publishDiagnostics\`, which runs the" \
+       "whole check of \`wsd check\` (parse, evaluate, build) on the unsaved text; median and range over" \
+       "$(awk '{ for (i = 1; i < NF; i++) if ($i == "runs") { print $(i + 1); exit } }' "$tmp/lsp.txt") change(s)." \
+       "The inline mesh ($label triangles) is generated." \
+       "" \
+       "| scene | text | didOpen to diagnostics | didChange to diagnostics, median (range) |" "|---|---:|---:|---:|" \
+       "$(row cornell.wsd)" "$(row mesh.wsd)"
+}
+
 # ---------------------------------------------------------------- the page
-sections=(cornell adaptive bench threads mesh embree primitives csg instances baseline parse)
+sections=(cornell adaptive bench threads mesh embree primitives csg instances baseline parse lsp)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done

@@ -263,7 +263,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         return;
     }
     std::string text, reason;
-    if (!read_file(path, text, reason)) {
+    if (!(reader_ && *reader_ ? (*reader_)(path, text, reason) : read_file(path, text, reason))) {
         diags_.error(at, "cannot read include file '" + path + "': " + reason);
         abort();
         return;

@@ -6,6 +6,7 @@
 // past independent errors and stops at limits, failed includes and "too many errors".
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,10 @@
 namespace wsd::lang {
 
 class ParamTable;
+
+// Reads an included file into `text`; false with the reason (lower case) when it cannot. An
+// editor's reader gives its unsaved text. (The same alias is declared in lang/load.h.)
+using IncludeReader = std::function<bool(const std::string& path, std::string& text, std::string& reason)>;
 
 struct Limits {
     uint64_t loop_iterations = 100'000'000;      // in total, with one step per function call
@@ -47,6 +52,8 @@ public:
     void run(const Program& program);
     // The --define values that `param` returns; the table must outlive the run.
     void set_params(const ParamTable* params) { params_ = params; }
+    // Where included files are read from (an editor's unsaved text); the file system when unset.
+    void set_file_reader(const IncludeReader* reader) { reader_ = reader; }
     // The values of the built-in constants `clock` and `frame` (a still's 0 and 0 by default).
     void set_time(const AnimationTime& time) { time_ = time; }
     // Evaluates one expression in the current (top) scope.
@@ -185,6 +192,7 @@ private:
     std::optional<Value> return_value_;
 
     // includes
+    const IncludeReader* reader_ = nullptr;
     IncludeChain chain_;
     int include_depth_ = 0;
     std::vector<std::string> include_stack_;     // canonical paths of the files being run

@@ -62,6 +62,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
             Interpreter interpreter(sources, diags, builder);
             interpreter.set_params(options.params);
             interpreter.set_time(options.time);
+            interpreter.set_file_reader(&options.read_include);
             interpreter.run(program);
             camera_seen = interpreter.camera_seen();
             aborted = interpreter.aborted();

@@ -24,6 +24,10 @@ struct CheckSummary {
     size_t stored_shapes = 0, stored_triangles = 0, instances = 0;
 };
 
+// Reads an included file into `text`; false with the reason (lower case) when it cannot. An
+// editor's reader gives its unsaved text. (The same alias is declared in lang/interpreter.h.)
+using IncludeReader = std::function<bool(const std::string& path, std::string& text, std::string& reason)>;
+
 struct LoadOptions {
     bool fragment = false;  // a `.wsdi` file: no camera required, nothing is built
     bool build = true;      // build the render scene (loads textures, validates geometry)
@@ -33,6 +37,7 @@ struct LoadOptions {
     const ParamTable* params = nullptr;              // --define values that param() returns
     AnimationTime time;                              // `clock` and `frame` (0 and 0: a still)
     render::ImageCache* images = nullptr;            // texture images kept across loads (frames)
+    IncludeReader read_include;                      // empty: included files are read from disk
 };
 
 struct LoadedScene {

@@ -24,36 +24,6 @@ std::string join_words(const std::vector<std::string_view>& words) {
     return out;
 }
 
-std::string expected_type(PropType t) {
-    switch (t) {
-        case PropType::Number:
-            return "a number";
-        case PropType::Integer:
-            return "an integer";
-        case PropType::Bool:
-            return "a bool";
-        case PropType::String:
-            return "a string";
-        case PropType::Vector2:
-            return "a vector2";
-        case PropType::Vector3:
-            return "a vector3";
-        case PropType::Colour:
-            return "a colour (vector3)";
-        case PropType::Material:
-            return "a material";
-        case PropType::Texture:
-            return "a texture";
-        case PropType::List:
-            return "a list";
-        case PropType::Word:
-            return "a word";
-        case PropType::NumberOrVector3:
-            return "a number or a vector3";
-    }
-    return "a value";
-}
-
 bool type_matches(PropType t, const Value& v) {
     switch (t) {
         case PropType::Number:
@@ -108,6 +78,36 @@ std::optional<std::string> material_hint(std::string_view name) {
 }
 
 }  // namespace
+
+std::string expected_type(PropType t) {
+    switch (t) {
+        case PropType::Number:
+            return "a number";
+        case PropType::Integer:
+            return "an integer";
+        case PropType::Bool:
+            return "a bool";
+        case PropType::String:
+            return "a string";
+        case PropType::Vector2:
+            return "a vector2";
+        case PropType::Vector3:
+            return "a vector3";
+        case PropType::Colour:
+            return "a colour (vector3)";
+        case PropType::Material:
+            return "a material";
+        case PropType::Texture:
+            return "a texture";
+        case PropType::List:
+            return "a list";
+        case PropType::Word:
+            return "a word";
+        case PropType::NumberOrVector3:
+            return "a number or a vector3";
+    }
+    return "a value";
+}
 
 const std::vector<std::string_view>& Property::words() const {
     static const std::vector<std::string_view> none;

@@ -22,6 +22,9 @@ namespace wsd::lang {
 // The types and ranges of properties are the render tables' (render/params.h).
 using PropType = render::FieldType;
 
+// The type as messages and the language server name it: "a number", "a colour (vector3)".
+std::string expected_type(PropType t);
+
 // A property as the language reads it: the render field it sets, plus the facts only the
 // language has (the name it is written under, how many values it takes).
 struct Property {

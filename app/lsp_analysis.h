@@ -1,0 +1,42 @@
+// The language server's answers about one open document: its diagnostics (the whole check of
+// `wsd check` on the unsaved text), hover, completion, definitions, symbols and formatting, as
+// LSP JSON values.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "app/lsp_positions.h"
+#include "app/lsp_syntax.h"
+
+namespace wsd::app::lsp {
+
+struct Document {
+    std::string uri, path, text;
+    long long version = 0;
+    bool fragment = false;  // a `.wsdi`: checked as a fragment (no camera required)
+    // Computed when first needed after each change.
+    std::shared_ptr<ParsedFile> parsed;
+    std::shared_ptr<const std::map<std::string, std::string>> top_level_types;
+    const ParsedFile& syntax();
+};
+
+nlohmann::json position_json(Position p);
+nlohmann::json range_json(const LineIndex& index, uint32_t begin, uint32_t end, Encoding enc);
+
+// Every diagnostic `wsd check` gives for the document's text; those in included files are shown at
+// the `include` line of the document, with the chain of includes in the message.
+// Included files are an open document's unsaved text (`open_text`), else read from disk.
+nlohmann::json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text);
+
+nlohmann::json hover(Document& doc, Position at, Encoding enc, const FileReader& reader);
+nlohmann::json completion(Document& doc, Position at, Encoding enc, const FileReader& reader);
+nlohmann::json definition(Document& doc, Position at, Encoding enc, const FileReader& reader);
+nlohmann::json document_symbols(Document& doc, Encoding enc);
+// One edit replacing the whole text with its canonical form; none when it is canonical already or
+// does not parse.
+nlohmann::json formatting(const Document& doc, Encoding enc);
+
+}  // namespace wsd::app::lsp

@@ -1,0 +1,209 @@
+# `wsd lsp` driven by a scripted client over a pipe (usage: lsp_test.py WSD). Each check prints
+# what failed; the exit status is the number of failures (0: all passed).
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from lsp_client import Client  # noqa: E402
+
+WSD = sys.argv[1]
+failures = 0
+
+
+def check(condition, what, detail=""):
+    global failures
+    if not condition:
+        failures += 1
+        print("FAIL: %s %s" % (what, detail))
+    else:
+        print("ok: %s" % what)
+
+
+def uri_of(path):
+    return "file://" + os.path.abspath(path)
+
+
+def position(text, needle, nth=0, delta=0):
+    """The LSP position (UTF-16) of the nth occurrence of `needle` in `text`, moved by delta characters."""
+    at = -1
+    for _ in range(nth + 1):
+        at = text.index(needle, at + 1)
+    at += delta
+    line = text.count("\n", 0, at)
+    start = text.rfind("\n", 0, at) + 1
+    return {"line": line, "character": len(text[start:at].encode("utf-16-le")) // 2}
+
+
+INCLUDE = """// shared names
+let R = 2
+fn twice(x) { return x * 2 }
+"""
+HEADER = """camera { position <0, 0, -5>  look_at <0, 0, 0>  fov 60 }
+light point { position <0, 5, -5> }
+include "inc.wsdi"
+let shiny = material { color <1, 0.5, 0>  specular 0.5 }
+"""
+BROKEN = HEADER + "sphere { center <0, 0, 0>  radius -1  material shiny }\n"
+FIXED = HEADER + "sphere { center <0, 0, 0>  radius twice(R)  material shiny }\n"
+
+with tempfile.TemporaryDirectory() as tmp:
+    with open(os.path.join(tmp, "inc.wsdi"), "w") as f:
+        f.write(INCLUDE)
+    main = os.path.join(tmp, "main.wsd")
+    uri = uri_of(main)
+    c = Client(WSD, cwd=tmp)
+
+    r = c.initialize()
+    caps = r.get("result", {}).get("capabilities", {})
+    check(caps.get("positionEncoding") == "utf-16", "initialize: utf-16 positions", r)
+    check(caps.get("textDocumentSync", {}).get("change") == 1 and caps.get("hoverProvider"),
+          "initialize: full sync and hover", caps)
+
+    # An error, with its range: the value -1 of radius.
+    c.notify("textDocument/didOpen",
+             {"textDocument": {"uri": uri, "languageId": "wsd", "version": 1, "text": BROKEN}})
+    d = c.wait_diagnostics(uri)["diagnostics"]
+    start = position(BROKEN, "-1")
+    end = position(BROKEN, "-1", delta=2)
+    check(len(d) == 1 and d[0]["severity"] == 1 and "radius" in d[0]["message"]
+          and d[0]["range"] == {"start": start, "end": end}, "an error with its range", d)
+
+    # Fixed by didChange: an empty list.
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 2},
+                                        "contentChanges": [{"text": FIXED}]})
+    p = c.wait_diagnostics(uri, 2)
+    check(p["diagnostics"] == [] and p.get("version") == 2, "fixed by didChange: no diagnostics", p)
+
+    # Hover on a property: its type, range, default and meaning from the tables.
+    h = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": position(FIXED, "radius", delta=2)})
+    text = h.get("result", {}).get("contents", {}).get("value", "") if h.get("result") else ""
+    check("radius" in text and "a number" in text and "> 0" in text and "Default: required" in text,
+          "hover on radius", h)
+    # Hover on a name: where it is defined and its type.
+    h = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": position(FIXED, "shiny", nth=1)})
+    text = h.get("result", {}).get("contents", {}).get("value", "") if h.get("result") else ""
+    check("material" in text and "main.wsd:4:5" in text, "hover on a let name", h)
+    h = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": position(FIXED, "R)")})
+    text = h.get("result", {}).get("contents", {}).get("value", "") if h.get("result") else ""
+    check("number" in text and "inc.wsdi:2:5" in text, "hover on a name from an include", h)
+
+    # Completion in a sphere: its properties, not the camera's.
+    edited = FIXED.replace("material shiny }", "material shiny\n  ra }")
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 3},
+                                        "contentChanges": [{"text": edited}]})
+    r = c.request("textDocument/completion", {"textDocument": {"uri": uri}, "position": position(edited, "  ra", delta=4)})
+    labels = [i["label"] for i in (r.get("result") or [])]
+    check("radius" in labels and "center" in labels and "translate" in labels and "fov" not in labels,
+          "completion in a sphere", labels)
+    # In value position: the names in scope.
+    r = c.request("textDocument/completion", {"textDocument": {"uri": uri},
+                                              "position": position(edited, "material shiny", delta=14)})
+    labels = [i["label"] for i in (r.get("result") or [])]
+    check("shiny" in labels and "R" in labels and "twice" in labels and "radius" not in labels,
+          "completion of a value", labels)
+    # At statement level: keywords and names.
+    r = c.request("textDocument/completion", {"textDocument": {"uri": uri}, "position": {"line": 4, "character": 0}})
+    labels = [i["label"] for i in (r.get("result") or [])]
+    check("sphere" in labels and "let" in labels and "shiny" in labels and "radius" not in labels,
+          "completion at statement level", labels)
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 4},
+                                        "contentChanges": [{"text": FIXED}]})
+
+    # Definition of a let across an include, and of the include string.
+    r = c.request("textDocument/definition", {"textDocument": {"uri": uri}, "position": position(FIXED, "R)")})
+    res = r.get("result") or {}
+    check(res.get("uri") == uri_of(os.path.join(tmp, "inc.wsdi"))
+          and res.get("range", {}).get("start") == {"line": 1, "character": 4}, "definition across an include", r)
+    r = c.request("textDocument/definition", {"textDocument": {"uri": uri}, "position": position(FIXED, "inc.wsdi")})
+    res = r.get("result") or {}
+    check(res.get("uri") == uri_of(os.path.join(tmp, "inc.wsdi")), "definition of an include string", r)
+    r = c.request("textDocument/definition", {"textDocument": {"uri": uri}, "position": position(FIXED, "shiny", nth=1)})
+    res = r.get("result") or {}
+    check(res.get("uri") == uri and res.get("range", {}).get("start") == {"line": 3, "character": 4},
+          "definition in the document", r)
+
+    # Document symbols.
+    r = c.request("textDocument/documentSymbol", {"textDocument": {"uri": uri}})
+    names = [s["name"] for s in (r.get("result") or [])]
+    check(names == ["camera", "light point", "shiny", "sphere"], "document symbols", names)
+
+    # Formatting is answered (a list of edits).
+    r = c.request("textDocument/formatting", {"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": True}})
+    check(isinstance(r.get("result"), list), "formatting answered", r)
+
+    # An error in an included file shows at the include line, with the chain.
+    with open(os.path.join(tmp, "bad.wsdi"), "w") as f:
+        f.write("let broken = 1 +\n")
+    inc_text = HEADER + 'include "bad.wsdi"\n'
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 5},
+                                        "contentChanges": [{"text": inc_text}]})
+    d = c.wait_diagnostics(uri, 5)["diagnostics"]
+    check(len(d) >= 1 and d[0]["range"]["start"] == position(inc_text, '"bad.wsdi"')
+          and "bad.wsdi:" in d[0]["message"] and "included from" in d[0]["message"],
+          "an included file's error at the include line", d)
+
+    # Garbage bytes, a bad header, broken JSON, unknown methods and wrong params: errors, not an exit.
+    c.write_raw(b"\x00\xff\xfe garbage \r\n\r\n")
+    c.write_raw(b"Content-Length: abc\r\n\r\n")
+    c.send({"jsonrpc": "2.0", "id": 900, "method": "no/such/method"})
+    r = c.wait_response(900)
+    check(r.get("error", {}).get("code") == -32601, "unknown method", r)
+    c.send({"jsonrpc": "2.0", "id": 901, "method": "textDocument/hover", "params": {"position": 3}})
+    r = c.wait_response(901)
+    check(r.get("error", {}).get("code") == -32602, "wrong params", r)
+    body = b'{"jsonrpc": "2.0", "id": 902, "method": '
+    c.write_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+    r = c.read()
+    check(r.get("error", {}).get("code") == -32700, "broken JSON", r)
+    # A half message: its announced length swallows what follows, and the server reads on.
+    c.write_raw(b"Content-Length: 60\r\n\r\n{\"jsonrpc\": \"2.0\", \"id\": 903,")
+    c.write_raw(b"\r\n" * 20)
+    r = c.read()
+    check(r.get("error", {}).get("code") == -32700, "a half message", r)
+    r = c.request("textDocument/documentSymbol", {"textDocument": {"uri": uri}})
+    check(isinstance(r.get("result"), list), "still answering after garbage", r)
+
+    # A scene that loops forever is stopped by the language's limits; the server goes on.
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 6},
+                                        "contentChanges": [{"text": "fn f(n) { return f(n + 1) }\nlet x = f(0)\n"}]})
+    d = c.wait_diagnostics(uri, 6)["diagnostics"]
+    check(len(d) >= 1 and d[0]["severity"] == 1, "a runaway recursion is an error", d)
+
+    status = c.close()
+    check(status == 0, "exit after shutdown: status 0", status)
+
+    # UTF-16 and UTF-32 columns after a non-ASCII string on the error's line.
+    scene = 'let s = "é😀"  let t = nope\n'
+    for enc, width in (("utf-16", 3), ("utf-32", 2)):
+        c = Client(WSD, cwd=tmp)
+        r = c.initialize(["utf-8", enc] if enc == "utf-32" else None)
+        check(r["result"]["capabilities"]["positionEncoding"] == enc, "encoding " + enc, r)
+        c.notify("textDocument/didOpen",
+                 {"textDocument": {"uri": uri_of(os.path.join(tmp, "u.wsdi")), "languageId": "wsd", "version": 1,
+                                   "text": scene}})
+        d = c.wait_diagnostics(uri_of(os.path.join(tmp, "u.wsdi")))["diagnostics"]
+        col = len('let s = "') + width + len('"  let t = ')
+        check(len(d) == 1 and d[0]["range"]["start"] == {"line": 0, "character": col}
+              and d[0]["range"]["end"] == {"line": 0, "character": col + 4}, "columns in " + enc, d)
+        check(c.close() == 0, "exit status after " + enc)
+
+    # An included file's unsaved text is what the including document is checked with.
+    c = Client(WSD, cwd=tmp)
+    c.initialize()
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": uri, "languageId": "wsd", "version": 1, "text": FIXED}})
+    check(c.wait_diagnostics(uri, 1)["diagnostics"] == [], "open: no diagnostics")
+    inc_uri = uri_of(os.path.join(tmp, "inc.wsdi"))
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": inc_uri, "languageId": "wsd", "version": 1,
+                                                       "text": "let Q = 2\n"}})
+    d = c.wait_diagnostics(uri)["diagnostics"]
+    check(len(d) == 1 and "twice" in d[0]["message"], "an open include's unsaved text is used", d)
+    c.close()
+
+    # Exit without shutdown: status 1.
+    c = Client(WSD, cwd=tmp)
+    c.initialize()
+    c.notify("exit", None)
+    check(c.proc.wait(timeout=30) == 1, "exit without shutdown: status 1")
+
+sys.exit(min(failures, 100))
