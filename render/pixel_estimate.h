@@ -4,6 +4,12 @@
 // and sRGB-encoded. The variance of the linear mean is carried to display space through the
 // display curve by a symmetric secant, (f(m + σ) − f(m − σ)) / 2 with σ the standard error of
 // the mean, which is f'(m)·σ for small σ and stays bounded where the curve clamps.
+//
+// The samples are summed in two halves, even and odd sample indices, and each half gives its
+// own estimate of the samples' variance. Deciding when a pixel stops from the same samples that
+// then report its error would be biased: pixels whose samples happened to vary little stop early
+// and report too little. So the even half decides (Half::Decide) and the odd half, independent
+// of that decision, reports (Half::Report).
 #pragma once
 
 #include <algorithm>
@@ -22,26 +28,31 @@ inline double display_value(double linear) {
 }
 
 struct PixelEstimate {
-    Vec3 sum{0}, sum2{0};
+    enum Half { Decide = 0, Report = 1 };
+    Vec3 sum[2] = {Vec3(0), Vec3(0)}, sum2[2] = {Vec3(0), Vec3(0)};
     uint32_t n = 0;
 
     void add(const Color& c) {
-        sum += c;
-        sum2 += c * c;
+        const int h = int(n & 1u);
+        sum[h] += c;
+        sum2[h] += c * c;
         ++n;
     }
-    Color mean() const { return n > 0 ? sum / double(n) : Color(0); }
+    Color mean() const { return n > 0 ? (sum[0] + sum[1]) / double(n) : Color(0); }
 
     // The estimated squared display-space error of the pixel's mean, averaged over its three
-    // channels; +∞ with fewer than two samples (no variance to estimate from).
-    double display_variance() const {
-        if (n < 2) return std::numeric_limits<double>::infinity();
+    // channels, with the samples' variance taken from one half; +∞ while that half has fewer
+    // than two samples.
+    double display_variance(Half half) const {
+        const uint32_t k = half == Decide ? (n + 1) / 2 : n / 2;  // samples in the half
+        if (k < 2) return std::numeric_limits<double>::infinity();
+        const Color m_all = mean();
         double total = 0;
         for (int c = 0; c < 3; ++c) {
-            const double m = sum[c] / n;
-            const double s2 = std::max(0.0, (sum2[c] - sum[c] * m) / double(n - 1));  // sample variance
-            const double sigma = std::sqrt(s2 / n);                                   // of the mean
-            const double e = 0.5 * (display_value(m + sigma) - display_value(m - sigma));
+            const double m = sum[half][c] / k;
+            const double s2 = std::max(0.0, (sum2[half][c] - sum[half][c] * m) / double(k - 1));
+            const double sigma = std::sqrt(s2 / n);  // of the mean of all n samples
+            const double e = 0.5 * (display_value(m_all[c] + sigma) - display_value(m_all[c] - sigma));
             total += e * e;
         }
         return total / 3.0;

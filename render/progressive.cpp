@@ -150,7 +150,7 @@ uint32_t planned_samples(const PixelEstimate& e, double target, const Progressiv
     const uint32_t max = uint32_t(std::max(options.max_samples, 1));
     if (e.n == 0) return std::min(uint32_t(std::max(options.first_samples, 1)), max);
     if (e.n >= max) return e.n;
-    const double v = e.display_variance();
+    const double v = e.display_variance(PixelEstimate::Decide);
     const uint32_t min = std::min(uint32_t(std::max(options.min_samples, 1)), max);
     if (e.n >= min && v <= target * target) return e.n;
     const double n = e.n;
@@ -163,7 +163,7 @@ uint32_t planned_samples(const PixelEstimate& e, double target, const Progressiv
 double estimated_rmse(const std::vector<PixelEstimate>& pixels) {
     if (pixels.empty()) return 0;
     double sum = 0;
-    for (const PixelEstimate& e : pixels) sum += e.display_variance();
+    for (const PixelEstimate& e : pixels) sum += e.display_variance(PixelEstimate::Report);
     return std::sqrt(sum / double(pixels.size()));
 }
 

@@ -22,7 +22,7 @@ namespace wsd::render {
 uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options);
 
 // The image's estimated display-space RMSE: the root of the mean of its pixels' display
-// variances (0 for no pixels).
+// variances from their reporting halves (0 for no pixels).
 double estimated_rmse(const std::vector<PixelEstimate>& pixels);
 
 class Scene;

@@ -47,7 +47,7 @@ struct Progressive {
     double target_error = 0;  // > 0: the per-pixel target; 0: none (refine until the deadline)
     std::optional<std::chrono::steady_clock::time_point> deadline;
     int first_samples = 4;
-    int min_samples = 8;
+    int min_samples = 16;
     int max_samples = 1024;
 };
 
