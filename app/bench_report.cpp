@@ -69,7 +69,7 @@ std::string bench_csv(const std::vector<BenchRow>& rows) {
             << r.stats.reflection_rays << ',' << r.stats.refraction_rays << ',' << r.stats.ray_queries()
             << ',' << fmt("%.9g", r.error.rmse) << ',' << fmt("%.6g", r.error.psnr) << ','
             << fmt("%.9g", r.error.max_abs_error) << ',' << fmt("%.9g", r.error.ssim) << ','
-            << (r.pareto ? 1 : 0) << ',' << (r.estimated_rmse ? fmt("%.9g", *r.estimated_rmse) : "") << '\n';
+            << (r.pareto ? 1 : 0) << ',' << estimate(r, "%.9g") << '\n';
     return out.str();
 }
 
