@@ -2,6 +2,7 @@
 // bench.svg (error against time, one line per knob, the Pareto front marked).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,13 +12,14 @@
 namespace wsd::app {
 
 struct BenchRow {
-    std::string knob;   // "supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights"
+    std::string knob;   // "supersamples", "light_samples", "max_depth", "adaptive_aa", "target_error" …
     std::string value;  // as the user would type it ("16", "on")
     double wall_seconds = 0;  // median over the repeats
     double cpu_seconds = 0;   // median over the repeats (process CPU time: all threads)
     render::RayStats stats;
-    ImageMetrics error;   // against the reference
-    bool pareto = false;  // no other row is both faster and more accurate
+    ImageMetrics error;                    // against the reference
+    std::optional<double> estimated_rmse;  // the render's own estimate (progressive rows)
+    bool pareto = false;                   // no other row is both faster and more accurate
 };
 
 struct BenchInfo {

@@ -1,7 +1,9 @@
 // The command line: one CLI11 subcommand per command, value checks that make bad values usage
 // errors (status 2), and the mapping of CLI11's own errors onto wsd's exit statuses.
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -34,6 +36,23 @@ CLI::Validator integer_in(long long lo, long long hi) {
             return "";
         },
         "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
+}
+
+// A finite number > 0 and at most `hi` (written `hi_text`); NaN, infinities, zero and negatives
+// are usage errors.
+CLI::Validator positive_number(double hi, const std::string& hi_text) {
+    return CLI::Validator(
+        [hi, hi_text](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (text.empty() || end != text.c_str() + text.size() ||
+                std::isspace(static_cast<unsigned char>(text[0])))
+                return "'" + text + "' is not a number";
+            if (!std::isfinite(value) || value <= 0 || value > hi)
+                return text + " is not a number > 0 and at most " + hi_text;
+            return "";
+        },
+        "NUMBER > 0");
 }
 
 void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
@@ -144,8 +163,15 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
     cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
     cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    cmd->add_option("--target-error", args.target_error,
+                    "E: progressive passes until every pixel's estimated display-space error is at most E")
+        ->check(positive_number(1e9, "1e9"));
+    cmd->add_option("--time-limit", args.time_limit,
+                    "T: progressive passes until T seconds have passed (checked between passes)")
+        ->check(positive_number(1e9, "1e9 seconds"));
     cmd->add_option("--aov", args.aov,
-                    "auxiliary images, any of albedo,normal,depth: layers of an .exr, else NAME.albedo.pfm …")
+                    "auxiliary images, any of albedo,normal,depth,samples: layers of an .exr, else "
+                    "NAME.albedo.pfm …")
         ->check(CLI::Validator(
             [](std::string& text) {
                 AovSelection selection;

@@ -1,7 +1,8 @@
 // `wsd bench SCENE`: renders a high-quality reference, then sweeps one knob at a time around the
 // scene's own settings (supersamples, light samples, max depth, adaptive supersampling, adaptive
-// lights), timing each setting (median of --repeat runs) and measuring its error against the
-// reference. Every render goes through lang::load_scene and render::render, like `wsd render`.
+// lights, bailout) and renders progressively to a few error targets, timing each setting (median of --repeat
+// runs) and measuring its error against the reference. Every render goes through lang::load_scene and
+// render::render, like `wsd render`.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +28,7 @@ constexpr int quick_max_side = 32;
 struct Setting {
     std::string knob, value;
     SceneOverrides overrides;
+    std::optional<double> target_error;  // progressive rendering to this target
 };
 
 struct SceneFacts {
@@ -53,12 +55,13 @@ struct RunResult {
     render::Film film;
     render::RayStats stats;
     double wall = 0, cpu = 0;
+    std::optional<double> estimated_rmse;  // progressive renders
 };
 
 // The scene's diagnostics were shown by the first load (run_bench); these loads print errors only.
 int run_setting(const std::string& path, const std::string& text, const SceneOverrides& overrides,
-                const BenchArgs& args, const lang::ParamTable& params, int repeat,
-                const CancelOnSignal& signals, const std::string& label, RunResult& out) {
+                std::optional<double> target_error, const BenchArgs& args, const lang::ParamTable& params,
+                int repeat, const CancelOnSignal& signals, const std::string& label, RunResult& out) {
     lang::LoadOptions load_options;
     load_options.params = &params;
     load_options.threads = args.threads;
@@ -74,6 +77,7 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
         render::RenderOptions options;
         options.threads = args.threads;
         options.cancel = signals.flag();
+        if (target_error) options.progressive = render::Progressive{*target_error, {}};
         options.progress = [&](double fraction, const render::RayStats& so_far) {
             progress.update(fraction, so_far);
         };
@@ -87,6 +91,7 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
             return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
         out.film = std::move(result.film);
         out.stats = result.stats;
+        if (result.progressive.used) out.estimated_rmse = result.progressive.estimated_rmse;
     }
     out.wall = median(walls);
     out.cpu = median(cpus);
@@ -97,7 +102,7 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
                            std::vector<std::string>& notes) {
     std::vector<Setting> settings;
     auto add = [&](const std::string& knob, const std::string& value, auto&& change) {
-        Setting s{knob, value, base};
+        Setting s{knob, value, base, {}};
         change(s.overrides);
         settings.push_back(std::move(s));
     };
@@ -133,6 +138,15 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
                     {"0", 0.0}, {"1/512", 1.0 / 512}, {"1/64", 1.0 / 64}, {"1/8", 0.125}, {"1/2", 0.5}};
     for (const auto& [label, value] : bailouts)
         add("bailout", label, [&, v = value](SceneOverrides& o) { o.bailout = v; });
+    // Progressive rendering to a target (the scene's supersamples do not apply).
+    const std::vector<std::pair<std::string, double>> targets =
+        quick ? std::vector<std::pair<std::string, double>>{{"0.04", 0.04}, {"0.02", 0.02}}
+              : std::vector<std::pair<std::string, double>>{
+                    {"0.04", 0.04}, {"0.02", 0.02}, {"0.01", 0.01}, {"0.005", 0.005}};
+    for (const auto& [label, value] : targets) {
+        add("target_error", label, [](SceneOverrides&) {});
+        settings.back().target_error = value;
+    }
     return settings;
 }
 
@@ -245,7 +259,7 @@ int run_bench(const BenchArgs& args) {
                   << "\n";
     RunResult ref;
     if (const int s =
-            run_setting(args.scene, text, reference, args, params, 1, signals, "bench reference", ref);
+            run_setting(args.scene, text, reference, {}, args, params, 1, signals, "bench reference", ref);
         s != exit_code::ok) {
         if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
         return s;
@@ -260,8 +274,8 @@ int run_bench(const BenchArgs& args) {
         RunResult run;
         const std::string label = "bench [" + std::to_string(i + 1) + "/" + std::to_string(settings.size()) +
                                   "] " + setting.knob + " " + setting.value;
-        if (const int s =
-                run_setting(args.scene, text, setting.overrides, args, params, repeat, signals, label, run);
+        if (const int s = run_setting(args.scene, text, setting.overrides, setting.target_error, args, params,
+                                      repeat, signals, label, run);
             s != exit_code::ok) {
             if (s >= exit_code::sigint) std::cerr << "wsd: interrupted; nothing written\n";
             return s;
@@ -273,11 +287,14 @@ int run_bench(const BenchArgs& args) {
         row.cpu_seconds = run.cpu;
         row.stats = run.stats;
         row.error = compare(to_display(run.film), ref_display);
+        row.estimated_rmse = run.estimated_rmse;
         if (verbose) {
             std::ostringstream line;
             line.precision(4);
             line << "bench: [" << i + 1 << "/" << settings.size() << "] " << row.knob << " " << row.value
-                 << ": " << row.wall_seconds << " s, RMSE " << row.error.rmse << "\n";
+                 << ": " << row.wall_seconds << " s, RMSE " << row.error.rmse;
+            if (row.estimated_rmse) line << " (estimated " << *row.estimated_rmse << ")";
+            line << "\n";
             std::cerr << line.str() << std::flush;
         }
         rows.push_back(std::move(row));

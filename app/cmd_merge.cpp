@@ -175,12 +175,16 @@ int run_merge(const MergeArgs& args) {
     image.rgb.assign(pixels * 3, 0.0f);
     const AovSelection& selection = tiles.front().meta.aovs;
     render::AovFilm aovs;
-    if (selection.any())
-        aovs = {std::vector<float>(pixels * 3, 0.0f), std::vector<float>(pixels * 3, 0.0f),
-                std::vector<float>(pixels, 0.0f)};
+    if (selection.traced())
+        aovs = {std::vector<float>(pixels * 3, 0.0f),
+                std::vector<float>(pixels * 3, 0.0f),
+                std::vector<float>(pixels, 0.0f),
+                {}};
+    if (selection.samples) aovs.samples.assign(pixels, 0.0f);
     for (const Tile& t : tiles) {
         paste(t.film.rgb, t.meta.region, image.width, 3, image.rgb);
-        if (!selection.any()) continue;
+        if (selection.samples) paste(t.aovs.samples, t.meta.region, image.width, 1, aovs.samples);
+        if (!selection.traced()) continue;
         paste(t.aovs.albedo, t.meta.region, image.width, 3, aovs.albedo);
         paste(t.aovs.normal, t.meta.region, image.width, 3, aovs.normal);
         paste(t.aovs.depth, t.meta.region, image.width, 1, aovs.depth);

@@ -157,6 +157,23 @@ std::string aov_note(const std::string& output, const AovSelection& aovs) {
     return "auxiliary images: " + files + "\n";
 }
 
+// What a progressive render reached, a line for the user ("" without one).
+std::string progressive_note(const RenderArgs& args, const render::ProgressiveReport& p) {
+    if (!p.used) return "";
+    char rmse[32];
+    std::snprintf(rmse, sizeof rmse, "%.4g", p.estimated_rmse);
+    std::string note = "progressive: " + counted(static_cast<uint64_t>(p.passes), "pass", "passes") +
+                       ", estimated RMSE " + rmse + ", samples per pixel " + std::to_string(p.samples_min) +
+                       "/" + std::to_string(p.samples_median) + "/" + std::to_string(p.samples_max) +
+                       " (min/median/max)";
+    if (p.first_pass_over)
+        note += "; the first pass alone took longer than the time limit, so the image is that pass";
+    else if (p.deadline_reached)
+        note += "; time limit reached after pass " + std::to_string(p.passes);
+    if (args.target_error && !p.target_reached) note += "; the target was not reached";
+    return note + "\n";
+}
+
 // What the frames of one run share: the scene's text (read once: stdin cannot be read again),
 // the signal guard (an interruption between frames stops the run too) and the decoded texture
 // images (immutable, so every frame still equals its own single render).
@@ -230,6 +247,9 @@ int report_stats(const RenderArgs& args, const std::string& stats_json, const la
     report.render_seconds = result.render_seconds;
     report.peak_memory_bytes = peak_memory_bytes();
     report.effects = result.effects;
+    report.progressive = result.progressive;
+    report.target_error = args.target_error;
+    report.time_limit = args.time_limit;
     if (args.stats) std::cout << stats_table(report) << std::flush;
     if (!stats_json.empty() && !write_file_atomic(stats_json, app::stats_json(report), error))
         return fail(exit_code::io, error);
@@ -285,12 +305,21 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
     options.specialise = !args.general;
     options.region = tile.region;
     options.adaptive_lights = args.adaptive_lights;
-    options.aovs = aovs.any();
+    options.aovs = aovs.traced();
+    if (args.target_error || args.time_limit) {
+        render::Progressive progressive;
+        progressive.target_error = args.target_error.value_or(0.0);
+        if (args.time_limit)
+            progressive.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                               std::chrono::duration<double>(*args.time_limit));
+        options.progressive = progressive;
+    }
     options.cancel = signals.flag();
     options.progress = [&](double fraction, const render::RayStats& so_far) {
         progress.update(job.run_fraction(fraction), so_far);
     };
-    const render::RenderResult result = render::render(*loaded->scene, options);
+    render::RenderResult result = render::render(*loaded->scene, options);
+    if (aovs.samples) result.aovs.samples = result.progressive.samples;
     const bool completed = !result.cancelled && !signals.cancelled();
     if (completed) progress.update(job.run_fraction(1.0), result.stats);
     progress.finish(completed && job.index + 1 == job.count);
@@ -315,6 +344,7 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
                   << '\n'
                   << std::flush;
     if (!args.quiet && !tile_file) std::cerr << aov_note(output, aovs);
+    if (!args.quiet) std::cerr << progressive_note(args, result.progressive);
 
     if (args.stats || !stats_path.empty()) return report_stats(args, stats_path, *loaded, result);
     return exit_code::ok;
@@ -332,6 +362,8 @@ int run_render(const RenderArgs& args) {
     AovSelection aovs;
     if (!args.aov.empty() && !parse_aov_list(args.aov, aovs, error))
         return fail(exit_code::usage, "--aov: " + error);
+    if (aovs.samples && !args.target_error && !args.time_limit)
+        return fail(exit_code::usage, "--aov samples needs --target-error or --time-limit");
     FramePlan plan;
     if (const int status = plan_frames(args, plan); status != exit_code::ok) return status;
 

@@ -51,6 +51,8 @@ struct RenderArgs {
     std::string frames;              // "A-B": an animation (app/frames.h)
     std::optional<long long> frame;  // --frame N: only frame N of --frames
     std::optional<double> clock;     // --clock X: `clock` of a still
+    std::optional<double> target_error;  // --target-error E: progressive, each pixel to E
+    std::optional<double> time_limit;    // --time-limit T: progressive, passes until T seconds
 };
 int run_render(const RenderArgs& args);
 

@@ -18,7 +18,7 @@ namespace wsd::app {
 namespace {
 
 const std::vector<std::string>& aov_names() {
-    static const std::vector<std::string> names{"albedo", "normal", "depth"};
+    static const std::vector<std::string> names{"albedo", "normal", "depth", "samples"};
     return names;
 }
 
@@ -42,6 +42,7 @@ std::vector<ExrChannel> exr_channels(const render::Film& film, const render::Aov
         for (size_t k = 0; k < 3; ++k)
             channels.push_back({std::string("normal.") + xyz[k], aovs.normal.data() + k, 3});
     if (selection.depth) channels.push_back({"depth.Z", aovs.depth.data(), 1});
+    if (selection.samples) channels.push_back({"samples.Y", aovs.samples.data(), 1});
     return channels;
 }
 
@@ -63,6 +64,7 @@ bool write_exr(const std::string& path, const render::Film& film, const render::
 std::string aov_pfm(const render::Film& film, const render::AovFilm& aovs, const std::string& name) {
     if (name == "albedo") return render::encode_pfm(film.width, film.height, 3, aovs.albedo.data());
     if (name == "normal") return render::encode_pfm(film.width, film.height, 3, aovs.normal.data());
+    if (name == "samples") return render::encode_pfm(film.width, film.height, 1, aovs.samples.data());
     return render::encode_pfm(film.width, film.height, 1, aovs.depth.data());
 }
 
@@ -82,6 +84,7 @@ std::vector<std::string> AovSelection::names() const {
     if (albedo) out.push_back("albedo");
     if (normal) out.push_back("normal");
     if (depth) out.push_back("depth");
+    if (samples) out.push_back("samples");
     return out;
 }
 
@@ -92,6 +95,8 @@ bool select_aov(const std::string& name, AovSelection& selection) {
         selection.normal = true;
     else if (name == "depth")
         selection.depth = true;
+    else if (name == "samples")
+        selection.samples = true;
     else
         return false;
     return true;
@@ -104,14 +109,15 @@ bool parse_aov_list(const std::string& text, AovSelection& selection, std::strin
         const size_t comma = std::min(text.find(',', start), text.size());
         const std::string name = text.substr(start, comma - start);
         if (name.empty()) {
-            error = "expected names from albedo, normal, depth separated by commas, got '" + text + "'";
+            error =
+                "expected names from albedo, normal, depth, samples separated by commas, got '" + text + "'";
             return false;
         }
         if (!select_aov(name, selection)) {
             const std::string match = lang::closest_match(name, aov_names());
             error = "unknown auxiliary image '" + name + "'" +
                     (match.empty() ? std::string() : "; did you mean '" + match + "'?") +
-                    " (known: albedo, normal, depth)";
+                    " (known: albedo, normal, depth, samples)";
             return false;
         }
         if (comma == text.size()) return true;

@@ -13,12 +13,14 @@ namespace wsd::app {
 // Which auxiliary images to write, always in this order.
 struct AovSelection {
     bool albedo = false, normal = false, depth = false;
-    bool any() const { return albedo || normal || depth; }
-    std::vector<std::string> names() const;  // "albedo", "normal", "depth" as selected
+    bool samples = false;  // samples per pixel (progressive rendering only)
+    bool any() const { return albedo || normal || depth || samples; }
+    bool traced() const { return albedo || normal || depth; }  // those the AOV walk computes
+    std::vector<std::string> names() const;  // "albedo", "normal", "depth", "samples" as selected
     bool operator==(const AovSelection&) const = default;
 };
 
-// Parses `--aov` text: names from albedo, normal, depth separated by commas (repeats allowed).
+// Parses `--aov` text: names from albedo, normal, depth, samples separated by commas (repeats allowed).
 // False + what is wrong (with a did-you-mean for a misspelt name), for "--aov: " to precede.
 bool parse_aov_list(const std::string& text, AovSelection& selection, std::string& error);
 

@@ -94,6 +94,19 @@ std::string stats_table(const RenderReport& r) {
     for (const std::string& e : r.effects) effects += (effects.empty() ? "" : ", ") + e;
     line(out, "Effects:", effects.empty() ? "-" : effects);
     out << rule << '\n';
+    if (const render::ProgressiveReport& p = r.progressive; p.used) {
+        line(out, "Progressive passes:",
+             std::to_string(p.passes) + (p.deadline_reached ? "  (time limit reached)" : ""));
+        line(out, "Estimated RMSE:",
+             fixed_digits(p.estimated_rmse) + (r.target_error
+                                                   ? "  (target " + fixed_digits(*r.target_error) +
+                                                         (p.target_reached ? ", reached)" : ", not reached)")
+                                                   : std::string()));
+        line(out, "Samples per pixel:",
+             "min " + std::to_string(p.samples_min) + ", median " + std::to_string(p.samples_median) +
+                 ", max " + std::to_string(p.samples_max));
+        out << rule << '\n';
+    }
     line(out, "Parse time:", fixed(r.parse_seconds, 3) + " s");
     line(out, "Build time:", fixed(r.build_seconds, 3) + " s");
     line(out, "Render time:",
@@ -114,7 +127,7 @@ std::string stats_json(const RenderReport& r) {
     auto seconds = [](double v) {
         return std::isfinite(v) ? std::strtod(fixed_digits(v).c_str(), nullptr) : v;
     };
-    const nlohmann::ordered_json json = {
+    nlohmann::ordered_json json = {
         {"scene", r.scene},
         {"width", r.width},
         {"height", r.height},
@@ -145,6 +158,18 @@ std::string stats_json(const RenderReport& r) {
         {"mrays_per_second", seconds(mrays_per_second(r))},
         {"peak_memory_bytes", r.peak_memory_bytes},
         {"effects", r.effects}};
+    if (const render::ProgressiveReport& p = r.progressive; p.used) {
+        json["estimated_rmse"] = p.estimated_rmse;
+        json["passes"] = p.passes;
+        json["samples_per_pixel"] = {
+            {"min", p.samples_min}, {"median", p.samples_median}, {"max", p.samples_max}};
+        json["samples_total"] = p.samples_total;
+        json["target_error"] = r.target_error ? nlohmann::ordered_json(*r.target_error) : nullptr;
+        json["target_reached"] = p.target_reached;
+        json["time_limit"] = r.time_limit ? nlohmann::ordered_json(*r.time_limit) : nullptr;
+        json["time_limit_reached"] = p.deadline_reached;
+        json["first_pass_over_time_limit"] = p.first_pass_over;
+    }
     // A scene path that is not UTF-8 is only a label: its bad bytes become U+FFFD.
     return json.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }

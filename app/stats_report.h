@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "render/renderer.h"
 #include "render/stats.h"
 
 namespace wsd::app {
@@ -20,6 +22,8 @@ struct RenderReport {
     double parse_seconds = 0, build_seconds = 0, render_seconds = 0;
     uint64_t peak_memory_bytes = 0;
     std::vector<std::string> effects;
+    render::ProgressiveReport progressive;  // used: a progressive render's passes and estimate
+    std::optional<double> target_error, time_limit;
 };
 
 std::string stats_table(const RenderReport& report);

@@ -102,15 +102,16 @@ bool read_aovs(std::string_view bytes, size_t at, const TileMeta& meta, render::
             return false;
         }
         at += used;
-        if (name == "depth") {
-            aovs.depth.resize(pixels);
-            for (size_t i = 0; i < pixels; ++i) aovs.depth[i] = image.rgb[3 * i];
+        if (name == "depth" || name == "samples") {
+            std::vector<float>& one = name == "depth" ? aovs.depth : aovs.samples;
+            one.resize(pixels);
+            for (size_t i = 0; i < pixels; ++i) one[i] = image.rgb[3 * i];
         } else {
             (name == "albedo" ? aovs.albedo : aovs.normal) = std::move(image.rgb);
         }
     }
     // An AovFilm holds all three images or none: those the tile does not carry are zero-filled.
-    if (meta.aovs.any()) {
+    if (meta.aovs.traced()) {
         if (aovs.albedo.empty()) aovs.albedo.assign(pixels * 3, 0.0f);
         if (aovs.normal.empty()) aovs.normal.assign(pixels * 3, 0.0f);
         if (aovs.depth.empty()) aovs.depth.assign(pixels, 0.0f);
@@ -144,6 +145,7 @@ std::string encode_tile(const render::Film& film, const render::AovFilm& aovs, c
     if (meta.aovs.albedo) out += render::encode_pfm(film.width, film.height, 3, aovs.albedo.data());
     if (meta.aovs.normal) out += render::encode_pfm(film.width, film.height, 3, aovs.normal.data());
     if (meta.aovs.depth) out += render::encode_pfm(film.width, film.height, 1, aovs.depth.data());
+    if (meta.aovs.samples) out += render::encode_pfm(film.width, film.height, 1, aovs.samples.data());
     return out;
 }
 

@@ -17,6 +17,7 @@
 #include "render/integrator.h"
 #include "render/math.h"
 #include "render/parallel.h"
+#include "render/progressive.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 
@@ -334,11 +335,14 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
     const Region region = clamped_region(options, settings);
     Film& film = result.film;
     film = {region.x1 - region.x0, region.y1 - region.y0, std::vector<float>(area(region) * 3, 0.0f)};
-    const bool adaptive = settings.adaptive_supersampling && settings.supersamples > 1 && area(region) > 0;
+    const bool adaptive = !options.progressive && settings.adaptive_supersampling &&
+                          settings.supersamples > 1 && area(region) > 0;
     Prepass prepass = adaptive ? make_prepass(region, settings, options.aovs) : Prepass{};
     if (options.aovs)
-        result.aovs = {std::vector<float>(area(region) * 3, 0.0f), std::vector<float>(area(region) * 3, 0.0f),
-                       std::vector<float>(area(region), 0.0f)};
+        result.aovs = {std::vector<float>(area(region) * 3, 0.0f),
+                       std::vector<float>(area(region) * 3, 0.0f),
+                       std::vector<float>(area(region), 0.0f),
+                       {}};
     const double total_work = std::max(1.0, double(area(region)) + double(prepass.centre.size()));
 
     Tally tally;
@@ -349,10 +353,15 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
             options.progress(double(work) / total_work, stats);
         };
     }
-    const RenderJob job{scene, options, region, film, result.aovs, prepass, adaptive, tally, parallel};
-    const bool complete = options.aovs ? render_tiles<true>(job) : render_tiles<false>(job);
-
-    result.stats = tally.snapshot().first;
+    bool complete = true;
+    if (options.progressive) {
+        complete = render_progressive(scene, options, region,
+                                      ParallelOptions{options.threads, options.cancel, {}}, result);
+    } else {
+        const RenderJob job{scene, options, region, film, result.aovs, prepass, adaptive, tally, parallel};
+        complete = options.aovs ? render_tiles<true>(job) : render_tiles<false>(job);
+        result.stats = tally.snapshot().first;
+    }
     result.cancelled = !complete;
     if (options.progress && complete) options.progress(1.0, result.stats);
     result.render_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,17 +22,46 @@ struct Film {
 };
 
 // The auxiliary images (render/aov.h) of a film, same size and order: all three, or (unless
-// requested) none.
+// requested) none; and the map of samples per pixel, when asked for.
 struct AovFilm {
-    std::vector<float> albedo;  // RGB
-    std::vector<float> normal;  // XYZ
-    std::vector<float> depth;   // one value a pixel; +∞ where no sample hit
-    bool empty() const { return albedo.empty(); }
+    std::vector<float> albedo;   // RGB
+    std::vector<float> normal;   // XYZ
+    std::vector<float> depth;    // one value a pixel; +∞ where no sample hit
+    std::vector<float> samples;  // samples per pixel, one value a pixel (progressive renders)
+    bool empty() const { return albedo.empty() && samples.empty(); }
 };
 
 // Half-open pixel rectangle [x0, x1) × [y0, y1) of the full image.
 struct Region {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+
+// Progressive rendering (render/progressive.h): a first pass of `first_samples` random camera
+// samples in every pixel, then passes that add samples where the estimated display-space error
+// is largest. With a target, a pixel stops once it has at least `min_samples` and its own
+// estimate is at most the target (so the image does not depend on threads or tiles); without
+// one, each pass refines the pixels whose error is above the image's current estimate. Passes
+// stop when no pixel needs more (or all have `max_samples`), or at the deadline, checked between
+// passes.
+struct Progressive {
+    double target_error = 0;  // > 0: the per-pixel target; 0: none (refine until the deadline)
+    std::optional<std::chrono::steady_clock::time_point> deadline;
+    int first_samples = 4;
+    int min_samples = 16;
+    int max_samples = 1024;
+};
+
+// What a progressive render reached.
+struct ProgressiveReport {
+    bool used = false;
+    int passes = 0;             // passes run, the first included
+    double estimated_rmse = 0;  // display space, over the region's pixels and channels
+    uint32_t samples_min = 0, samples_median = 0, samples_max = 0;  // per pixel
+    uint64_t samples_total = 0;
+    bool target_reached = false;    // every pixel at most the target (or at max_samples)
+    bool deadline_reached = false;  // passes stopped because time was up
+    bool first_pass_over = false;   // the first pass alone ended after the deadline
+    std::vector<float> samples;     // samples per pixel, row-major over the region
 };
 
 struct RenderOptions {
@@ -42,6 +73,7 @@ struct RenderOptions {
     bool aovs = false;             // also compute the auxiliary images (RenderResult::aovs)
     std::function<void(double fraction, const RayStats& so_far)> progress;  // may be empty
     const std::atomic<bool>* cancel = nullptr;  // set to stop early (render returns false)
+    std::optional<Progressive> progressive;     // set: progressive passes instead of the grid
 };
 
 struct RenderResult {
@@ -52,6 +84,7 @@ struct RenderResult {
     double render_seconds = 0;
     bool cancelled = false;
     std::vector<std::string> effects;  // the effects the scene calls for (see effects.h)
+    ProgressiveReport progressive;     // with RenderOptions::progressive
 };
 
 class Scene;       // geometry + lights + materials + textures, ready to render

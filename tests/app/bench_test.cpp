@@ -98,12 +98,25 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
             std::stod(row[col["reflection_rays"]]) + std::stod(row[col["refraction_rays"]]);
     }
     CHECK(values["supersamples"] == std::vector<std::string>{"1", "4", "16"});
+    // Progressive rows carry their own estimate; the others a dash.
+    REQUIRE(col.count("estimated_rmse"));
+    CHECK(values["target_error"] == std::vector<std::string>{"0.04", "0.02"});
+    for (size_t i = 1; i < rows.size(); ++i) {
+        const std::string& estimate = rows[i][col["estimated_rmse"]];
+        if (rows[i][col["knob"]] != "target_error") {
+            CHECK(estimate == "-");
+            continue;
+        }
+        const double target = std::stod(rows[i][col["value"]]);
+        CHECK(std::stod(estimate) > 0);
+        CHECK(std::stod(estimate) <= 1.5 * target);
+    }
     CHECK(values["light_samples"] == std::vector<std::string>{"1", "4", "16"});
     CHECK(values["max_depth"] == std::vector<std::string>{"0", "1", "2"});
     CHECK(values["adaptive_aa"] == std::vector<std::string>{"off", "on"});
     CHECK(values["adaptive_lights"] == std::vector<std::string>{"off", "on"});
     CHECK(values["bailout"] == std::vector<std::string>{"0", "1/512", "1/8"});
-    CHECK(values.size() == 6);
+    CHECK(values.size() == 7);
     // A higher bailout traces fewer secondary rays, never more.
     CHECK(secondary["bailout=0"] >= secondary["bailout=1/512"]);
     CHECK(secondary["bailout=1/512"] >= secondary["bailout=1/8"]);
@@ -119,9 +132,9 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
 
     const std::string svg = read_file(dir / "out/bench.svg");
     CHECK(balanced(svg));
-    CHECK(count_tags(svg, "path") == 6);
-    for (const char* knob :
-         {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights", "bailout"})
+    CHECK(count_tags(svg, "path") == 7);
+    for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights",
+                             "bailout", "target_error"})
         CHECK(svg.find(std::string(">") + knob + "</text>") != std::string::npos);  // legend
     CHECK(svg.find("Pareto") != std::string::npos);
 }

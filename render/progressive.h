@@ -1,0 +1,35 @@
+// Progressive rendering (RenderOptions::progressive): passes of random camera samples, each
+// pixel's samples indexed 0, 1, 2 … so that a pixel's n-th sample is the same whatever happened
+// before it, and a pixel's sample count decided by its own estimate (render/pixel_estimate.h)
+// and the pass's target alone. A pixel sample is a camera sample with everything it shades
+// (area light cells, reflections, refractions), so more pixel samples refine all of them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/parallel.h"
+#include "render/pixel_estimate.h"
+#include "render/renderer.h"
+
+namespace wsd::render {
+
+// The sample count a pixel with estimate `e` should reach in a pass whose target is `target`
+// (display-space RMS error over its channels; 0 before any estimate exists): `first_samples`
+// for a pixel without samples; its own count once it has at least `min_samples` and an error
+// of at most the target, or `max_samples`; else about the count that would meet the target,
+// between 1.25 and 2 times its count, at least `min_samples` and at most `max_samples`.
+uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options);
+
+// The image's estimated display-space RMSE: the root of the mean of its pixels' display
+// variances from their reporting halves (0 for no pixels).
+double estimated_rmse(const std::vector<PixelEstimate>& pixels);
+
+class Scene;
+
+// Renders `region` progressively into result.film (and result.aovs when options.aovs), adding
+// the rays' counters to result.stats and filling result.progressive. False when cancelled.
+bool render_progressive(const Scene& scene, const RenderOptions& options, const Region& region,
+                        const ParallelOptions& parallel, RenderResult& result);
+
+}  // namespace wsd::render
