@@ -1,6 +1,6 @@
 // Emission and indirect light (wsd-language.md, "Emission and indirect light"): the furnace cases
 // of the contract, convergence like 1/√N, determinism, and the hard cases of robustness.md
-// (R81–R85). Every render goes through render_spec, which asserts nonfinite_samples == 0.
+// (R83–R87). Every render goes through render_spec, which asserts nonfinite_samples == 0.
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -15,25 +15,6 @@ render::MaterialSpec emissive(Color c, Color e) {
     render::MaterialSpec m = matte(c, 0.0);
     m.emission = e;
     return m;
-}
-
-// The mean of every pixel and the mean of the pixels' variance about it.
-struct FilmMoments {
-    Color mean{0};
-    Color var{0};
-};
-
-FilmMoments moments(const render::Film& film) {
-    FilmMoments out;
-    const double n = double(film.width) * double(film.height);
-    for (int y = 0; y < film.height; ++y)
-        for (int x = 0; x < film.width; ++x) out.mean += pixel(film, x, y) / n;
-    for (int y = 0; y < film.height; ++y)
-        for (int x = 0; x < film.width; ++x) {
-            const Color d = pixel(film, x, y) - out.mean;
-            out.var += d * d / (n - 1);
-        }
-    return out;
 }
 
 // An open box (floor, back and two side walls, red and green) with an emissive panel under the
@@ -63,7 +44,7 @@ TEST_CASE("indirect: a diffuse sphere alone under background B is c·B", "[indir
     // A convex object under a uniform environment: every cosine-sampled direction leaves the scene
     // and brings exactly B, so every path is exact and the tolerance is rounding only (a leak or
     // a wrong normalisation would be off by a factor, e.g. π).
-    auto spec = basic_scene(24, 24, {0, 0, -5}, 20);
+    auto spec = basic_scene(24, 24, {0, 0, -5}, 30);
     spec.settings.indirect_samples = 4;
     spec.settings.background = {0.5, 0.7, 0.9};
     const Color c{0.8, 0.5, 0.3};
@@ -74,7 +55,7 @@ TEST_CASE("indirect: a diffuse sphere alone under background B is c·B", "[indir
     for (int y = 0; y < 24; ++y)
         for (int x = 0; x < 24; ++x) {
             const Color p = pixel(r.film, x, y);
-            if (p == spec.settings.background) continue;  // a miss
+            if (close_to(p, spec.settings.background, 1e-6)) continue;  // a miss (the film is float)
             ++on_sphere;
             CHECK(close_to(p, expect, 1e-5));
         }
@@ -118,8 +99,8 @@ TEST_CASE("indirect: colour bleeds from the red and green walls", "[indirect]") 
             right += pixel(r.film, 15 - x, y);
         }
     INFO("left " << left.x << " " << left.y << " right " << right.x << " " << right.y);
-    CHECK(left.x / left.y > 1.2);
-    CHECK(right.y / right.x > 1.2);
+    CHECK(left.x / left.y > 1.1);
+    CHECK(right.y / right.x > 1.1);
     CHECK(r.stats.emitter_samples > 0);
     CHECK(r.stats.indirect_paths > 0);
 }
@@ -178,7 +159,7 @@ TEST_CASE("indirect off: emission is seen beside ambient and lights nothing", "[
     CHECK(r.stats.emitter_samples == 0);
 }
 
-TEST_CASE("R81: an emitter at a grazing angle stays bounded", "[indirect][robust]") {
+TEST_CASE("R83: an emitter at a grazing angle stays bounded", "[indirect][robust]") {
     // An emissive wall standing on the floor, its plane through the camera's view of the floor's
     // contact line: emitter samples there have cos → 0 at one end or the other. MIS bounds every
     // sample (an emitter sample ≤ E/2, a found emitter ≤ E), so no pixel may exceed ρ·1.5·E·(1 +
@@ -201,7 +182,7 @@ TEST_CASE("R81: an emitter at a grazing angle stays bounded", "[indirect][robust
     CHECK(most > 0);
 }
 
-TEST_CASE("R82: a point light inside glass, with indirect light", "[indirect][robust]") {
+TEST_CASE("R84: a point light inside glass, with indirect light", "[indirect][robust]") {
     auto spec = basic_scene(16, 16, {0, 1, -5}, 40);
     spec.settings.indirect_samples = 4;
     spec.shapes.push_back(sphere({0, 0, 0}, 1, add_material(spec, glass())));
@@ -215,7 +196,7 @@ TEST_CASE("R82: a point light inside glass, with indirect light", "[indirect][ro
     CHECK(render_spec(spec, one).film.rgb == r.film.rgb);
 }
 
-TEST_CASE("R83: a closed glass box with an emitter inside lights the room through refraction",
+TEST_CASE("R85: a closed glass box with an emitter inside lights the room through refraction",
           "[indirect][robust]") {
     // Emitter samples are blocked by the glass (they are shadow rays that any surface stops); the
     // light reaches the floor only along paths that refract through the box, and the camera sees
@@ -234,7 +215,7 @@ TEST_CASE("R83: a closed glass box with an emitter inside lights the room throug
     CHECK(r.stats.emitter_samples > 0);
 }
 
-TEST_CASE("R84: a zero-area emitter is refused", "[indirect][robust]") {
+TEST_CASE("R86: a zero-area emitter is refused", "[indirect][robust]") {
     auto spec = basic_scene(8, 8);
     spec.settings.indirect_samples = 1;
     spec.shapes.push_back(sphere({0, 0, 0}, 1e-170, add_material(spec, emissive(Color(1), Color(1)))));
@@ -251,7 +232,7 @@ TEST_CASE("R84: a zero-area emitter is refused", "[indirect][robust]") {
     CHECK(render::build_scene(spec, errors, true, 1));
 }
 
-TEST_CASE("R85: an emissive plane is seen but not sampled", "[indirect][robust]") {
+TEST_CASE("R87: an emissive plane is seen but not sampled", "[indirect][robust]") {
     auto spec = basic_scene(8, 8, {0, 0, -3}, 40);
     spec.settings.indirect_samples = 4;
     spec.shapes.push_back(sphere({0, 0, 0}, 1, add_material(spec, matte({0.5, 0.5, 0.5}))));
