@@ -13,7 +13,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 TIMEFORMAT='%U %S'
 scene=examples/cornell-indirect.wsd
-common=(--width "$size" --height "$size" --supersamples 4 --threads 1 --quiet)
+common=(--width "$size" --height "$size" --supersamples 4 --quiet)
 
 cpu() { awk '{ printf "%.2f", $1 + $2 }' <<<"$1"; }
 error() { "$wsd" diff "$out/ref.pfm" "$1" | awk '/^RMSE/ { r = $2 } /^PSNR/ { p = $2 } END { print r, p }'; }
@@ -22,7 +22,7 @@ error() { "$wsd" diff "$out/ref.pfm" "$1" | awk '/^RMSE/ { r = $2 } /^PSNR/ { p 
   --indirect-samples "$ref_paths" --indirect-bounces 8 --seed 12345 >/dev/null
 printf '%-8s %-22s %8s %10s %8s\n' renderer setting CPU-s RMSE PSNR
 for n in 1 2 4 8 16 32; do
-  t=$( { time "$wsd" render "$scene" "${common[@]}" --indirect-samples "$n" -o "$out/wsd.pfm" >/dev/null; } 2>&1 )
+  t=$( { time "$wsd" render "$scene" "${common[@]}" --threads 1 --indirect-samples "$n" -o "$out/wsd.pfm" >/dev/null; } 2>&1 )
   read -r rmse psnr < <(error "$out/wsd.pfm")
   printf '%-8s %-22s %8s %10s %8s\n' wsd "indirect_samples $n" "$(cpu "$t")" "$rmse" "$psnr"
 done

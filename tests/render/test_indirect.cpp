@@ -107,12 +107,13 @@ TEST_CASE("indirect: colour bleeds from the red and green walls", "[indirect]") 
 
 TEST_CASE("indirect: the error falls like 1/sqrt(N)", "[indirect][convergence]") {
     // RMS error over 256 pixels against a 1024-path reference of another seed (independent), for
-    // N = 1, 4, 16: the log–log slope must be −0.5 ± 0.1. The reference's own error adds
-    // 1/1024 of the variance at most (N = 16: 1.6 %, a slope change below 0.01); the RMS of 256
-    // independent pixels is known to about 1/√512 ≈ 4 %, a slope uncertainty of about 0.03.
+    // N = 4, 16, 64: the log–log slope must be −0.5 ± 0.1. The reference's own variance adds N/1024
+    // of the sample's (N = 64: 6 %, so the error reads 3 % high there and the slope about 0.015
+    // flatter); the RMS of 256 independent pixels is known to about 1/√512 ≈ 4 %, a slope
+    // uncertainty of about 0.03. (N = 1 is left out: single paths have heavy tails.)
     const auto ref = render_spec(small_cornell(1024, 7));
     std::vector<double> xs, ys;
-    for (int n : {1, 4, 16}) {
+    for (int n : {4, 16, 64}) {
         const auto r = render_spec(small_cornell(n, 1));
         double sum = 0;
         for (int y = 0; y < 16; ++y)
