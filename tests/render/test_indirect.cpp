@@ -136,7 +136,7 @@ TEST_CASE("indirect: the error falls like 1/sqrt(N)", "[indirect][convergence]")
     CHECK(slope < -0.4);
 }
 
-TEST_CASE("indirect: same image for any thread count", "[indirect][determinism]") {
+TEST_CASE("indirect: same image for any thread count, tile and tracer", "[indirect][determinism]") {
     const auto spec = small_cornell(4, 3);
     render::RenderOptions one, three;
     one.threads = 1;
@@ -144,6 +144,17 @@ TEST_CASE("indirect: same image for any thread count", "[indirect][determinism]"
     const auto a = render_spec(spec, one);
     const auto b = render_spec(spec, three);
     CHECK(a.film.rgb == b.film.rgb);
+    // A region (a tile) has the full image's pixels, byte for byte.
+    render::RenderOptions tile;
+    tile.region = render::Region{3, 5, 11, 13};
+    const auto t = render_spec(spec, tile);
+    REQUIRE(t.film.width == 8);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) CHECK(pixel(t.film, x, y) == pixel(a.film, x + 3, y + 5));
+    // The general tracer gives the same image.
+    render::RenderOptions general;
+    general.specialise = false;
+    CHECK(render_spec(spec, general).film.rgb == a.film.rgb);
 }
 
 TEST_CASE("indirect off: emission is seen beside ambient and lights nothing", "[indirect][emission]") {
