@@ -171,7 +171,7 @@ indirect_table() {
        "rays a pixel, one thread, with 1 … 32 indirect paths a camera sample, and its POV-Ray port" \
        "(bench/scenes/cornell-indirect.pov: the same walls, light and glowing panel) with radiosity at" \
        "rising \`count\` (3 bounces, error_bound 0.5), rendered in the same run. The error of each is" \
-       "against wsd's converged reference ($ref paths a camera sample, 8 bounces, another seed), as" \
+       "against wsd's converged reference ($ref paths a camera sample, the same 3 bounces, another seed), as" \
        "\`wsd diff\` measures it on display values." "" \
        "| renderer | setting | CPU-s | RMSE | PSNR (dB) |" "|---|---|---:|---:|---:|"
   awk 'NR > 1 && NF >= 5 { s = $2; for (i = 3; i <= NF - 3; i++) s = s " " $i
