@@ -26,8 +26,8 @@ struct EmitterPoint {
 class Emitters {
 public:
     // The sampled emitters of `spec` (top-level shapes only). Appends an error for an emissive
-    // shape whose area is zero or not finite. `unsampled` lists emissive shapes that are seen but
-    // not sampled (planes, and shapes of other kinds, CSG solids and instances).
+    // shape of a sampled kind whose area is zero or not finite. Emissive planes, cylinders, cones,
+    // tori, ellipsoids, CSG solids and instances are seen but not sampled (pdf_area() is 0).
     static Emitters build(const SceneSpec& spec, std::vector<SpecError>& errors);
 
     bool empty() const { return shapes_.empty(); }
