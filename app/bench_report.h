@@ -12,7 +12,8 @@
 namespace wsd::app {
 
 struct BenchRow {
-    std::string knob;   // "supersamples", "light_samples", "max_depth", "adaptive_aa", "target_error" …
+    std::string knob;   // "supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights",
+                        // "bailout", "target_error", "indirect_samples", "indirect_bounces"
     std::string value;  // as the user would type it ("16", "on")
     double wall_seconds = 0;  // median over the repeats
     double cpu_seconds = 0;   // median over the repeats (process CPU time: all threads)

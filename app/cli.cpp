@@ -111,10 +111,12 @@ int print_help(CLI::App& app, const std::string& topic) {
 
 struct RenderOptionRefs {
     int width = 0, height = 0, supersamples = 0, light_samples = 0, max_depth = 0;
+    int indirect_samples = 0, indirect_bounces = 0;
     long long seed = 0;
     bool adaptive_aa = false;
     CLI::Option *o_width = nullptr, *o_height = nullptr, *o_supersamples = nullptr,
-                *o_light_samples = nullptr, *o_max_depth = nullptr, *o_seed = nullptr;
+                *o_light_samples = nullptr, *o_max_depth = nullptr, *o_seed = nullptr,
+                *o_indirect_samples = nullptr, *o_indirect_bounces = nullptr;
 
     void add(CLI::App& cmd) {
         o_width = cmd.add_option("--width", width, "image width in pixels (replaces the scene's)")
@@ -131,6 +133,12 @@ struct RenderOptionRefs {
         o_seed = cmd.add_option("--seed", seed, "random seed (0 … 4294967295)")
                      ->check(integer_in(0LL, 4294967295LL));
         cmd.add_flag("--adaptive-aa", adaptive_aa, "adaptive supersampling (full grid only at edges)");
+        o_indirect_samples =
+            cmd.add_option("--indirect-samples", indirect_samples, "indirect paths a camera sample (0 = off)")
+                ->check(integer_in(0, render::kMaxIndirectSamples));
+        o_indirect_bounces = cmd.add_option("--indirect-bounces", indirect_bounces,
+                                            "the most diffuse reflections a path makes")
+                                 ->check(integer_in(1, render::kMaxIndirectBounces));
     }
 
     SceneOverrides overrides() const {
@@ -142,6 +150,8 @@ struct RenderOptionRefs {
         if (o_max_depth->count()) o.max_depth = max_depth;
         if (o_seed->count()) o.seed = static_cast<uint32_t>(seed);
         if (adaptive_aa) o.adaptive_supersampling = true;
+        if (o_indirect_samples->count()) o.indirect_samples = indirect_samples;
+        if (o_indirect_bounces->count()) o.indirect_bounces = indirect_bounces;
         return o;
     }
 };

@@ -36,6 +36,7 @@ struct SceneFacts {
     uint32_t seed = 0;
     bool area_lights = false;
     std::string light_grid;  // of the first area light, e.g. "4x4"
+    int indirect_samples = 0, indirect_bounces = 3;
 };
 
 double cpu_seconds_now() {
@@ -147,6 +148,16 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
         add("target_error", label, [](SceneOverrides&) {});
         settings.back().target_error = value;
     }
+    if (facts.indirect_samples > 0) {
+        const std::vector<int> paths = quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 4, 16, 64};
+        for (const int n : paths)
+            add("indirect_samples", std::to_string(n), [&](SceneOverrides& o) { o.indirect_samples = n; });
+        const std::vector<int> bounces = quick ? std::vector<int>{1, 2, 3} : std::vector<int>{1, 2, 3, 5, 8};
+        for (const int b : bounces)
+            add("indirect_bounces", std::to_string(b), [&](SceneOverrides& o) { o.indirect_bounces = b; });
+    } else {
+        notes.push_back("indirect_samples and indirect_bounces skipped: the scene has no indirect light");
+    }
     return settings;
 }
 
@@ -180,6 +191,8 @@ int read_scene_facts(const BenchArgs& args, const std::string& text, const lang:
     facts.supersamples = st.supersamples;
     facts.max_depth = st.max_depth;
     facts.seed = st.seed;
+    facts.indirect_samples = st.indirect_samples;
+    facts.indirect_bounces = st.indirect_bounces;
     for (const render::LightSpec& l : loaded->spec.lights)
         if (l.kind == render::LightKind::Area && !facts.area_lights) {
             facts.area_lights = true;
@@ -203,12 +216,18 @@ SceneOverrides reference_overrides(const BenchArgs& args, const SceneFacts& fact
     reference.adaptive_supersampling = false;
     reference.adaptive_lights = false;
     reference.bailout = 0.0;
+    // Indirect light: the scene's paths a camera sample (the reference's many camera samples
+    // multiply them), and at least 8 bounces.
+    if (facts.indirect_samples > 0) reference.indirect_bounces = std::max(facts.indirect_bounces, 8);
     info.reference_settings =
         "supersamples " + std::to_string(*reference.supersamples) +
         (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" + std::to_string(ref_light)
                            : std::string()) +
-        ", max depth " + std::to_string(*reference.max_depth) + ", no adaptive sampling, bailout 0, seed " +
-        std::to_string(*reference.seed);
+        ", max depth " + std::to_string(*reference.max_depth) +
+        (facts.indirect_samples > 0 ? ", indirect samples " + std::to_string(facts.indirect_samples) +
+                                          ", indirect bounces " + std::to_string(*reference.indirect_bounces)
+                                    : std::string()) +
+        ", no adaptive sampling, bailout 0, seed " + std::to_string(*reference.seed);
     return reference;
 }
 

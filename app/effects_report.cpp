@@ -53,6 +53,11 @@ void print_effects(const lang::LoadedScene& scene, const lang::SourceManager& so
         if (!effects.has(effect)) continue;
         out << "    " << render::effect_name(effect);
         const std::vector<uint32_t>& shapes = effects.shapes[i];
+        if (effect == render::Effect::IndirectLight) {
+            out << " (settings: indirect_samples " << spec.settings.indirect_samples << ", indirect_bounces "
+                << spec.settings.indirect_bounces << ")\n";
+            continue;
+        }
         if (shapes.empty()) {
             out << " (scene-wide)\n";
             continue;

@@ -19,6 +19,8 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     if (seed) s.seed = *seed;
     if (adaptive_supersampling) s.adaptive_supersampling = *adaptive_supersampling;
     if (bailout) s.bailout = *bailout;
+    if (indirect_samples) s.indirect_samples = *indirect_samples;
+    if (indirect_bounces) s.indirect_bounces = *indirect_bounces;
     for (render::LightSpec& light : spec.lights) {
         if (light.kind != render::LightKind::Area) continue;
         if (light_samples) light.samples_u = light.samples_v = *light_samples;
@@ -119,6 +121,7 @@ std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_li
         << ";adaptive_lights=" << adaptive_lights << ";lights=";
     for (const render::LightSpec& light : spec.lights)
         out << light.samples_u << "x" << light.samples_v << (light.adaptive ? "a" : "") << ",";
+    if (s.indirect_samples > 0) out << ";indirect=" << s.indirect_samples << "x" << s.indirect_bounces;
     return out.str();
 }
 

@@ -72,6 +72,13 @@ std::string stats_table(const RenderReport& r) {
     line(out, "  answered by shaft alone:", std::to_string(s.shaft_answered_rays));
     line(out, "Reflected rays:", std::to_string(s.reflection_rays));
     line(out, "Refracted rays:", std::to_string(s.refraction_rays));
+    line(out, "Indirect paths:",
+         std::to_string(s.indirect_paths) + "  (bounces " + std::to_string(s.indirect_bounces) + ", mean " +
+             (s.indirect_paths ? fixed(double(s.indirect_bounces) / double(s.indirect_paths), 2)
+                               : std::string("-")) +
+             ")");
+    line(out, "  their rays:", std::to_string(s.indirect_rays));
+    line(out, "Emitter samples:", std::to_string(s.emitter_samples));
     line(out, "Ray queries (total):", std::to_string(s.ray_queries()));
     out << rule << '\n';
     char head[160];
@@ -138,6 +145,12 @@ std::string stats_json(const RenderReport& r) {
         {"shaft_answered_rays", s.shaft_answered_rays},
         {"reflection_rays", s.reflection_rays},
         {"refraction_rays", s.refraction_rays},
+        {"indirect_paths", s.indirect_paths},
+        {"indirect_bounces", s.indirect_bounces},
+        {"indirect_bounces_mean",
+         s.indirect_paths ? double(s.indirect_bounces) / double(s.indirect_paths) : 0.0},
+        {"indirect_rays", s.indirect_rays},
+        {"emitter_samples", s.emitter_samples},
         {"ray_queries", s.ray_queries()},
         {"triangle_tests", s.triangle_tests},
         {"triangle_hits", s.triangle_hits},

@@ -169,6 +169,25 @@ bench_table() {
                     $1, $2, $4, commas($6), $10, $11, $13, ($14 == 1 ? "*" : "") }' "$bench_dir/bench.csv" >>"$page"
 }
 
+# ---------------------------------------------------------------- indirect light against POV-Ray radiosity
+indirect_table() {
+  section "Indirect light: error against time, and POV-Ray's radiosity"
+  local size=96 ref=256
+  ((quick)) && size=32 ref=16
+  log "bench/indirect_vs_povray.sh $size $ref"
+  WSD=$wsd bench/indirect_vs_povray.sh "$size" "$ref" >"$tmp/indirect.txt"
+  para "\`bench/indirect_vs_povray.sh $size $ref\`: examples/cornell-indirect.wsd at ${size}×${size}, 4 camera" \
+       "rays a pixel, one thread, with 1 … 32 indirect paths a camera sample, and its POV-Ray port" \
+       "(bench/scenes/cornell-indirect.pov: the same walls, light and glowing panel) with radiosity at" \
+       "rising \`count\` (3 bounces, error_bound 0.5), rendered in the same run. The error of each is" \
+       "against wsd's converged reference ($ref paths a camera sample, the same 3 bounces, another seed), as" \
+       "\`wsd diff\` measures it on display values." "" \
+       "| renderer | setting | CPU-s | RMSE | PSNR (dB) |" "|---|---|---:|---:|---:|"
+  awk 'NR > 1 && NF >= 5 { s = $2; for (i = 3; i <= NF - 3; i++) s = s " " $i
+                           printf "| %s | %s | %s | %s | %s |\n", $1, s, $(NF - 2), $(NF - 1), $NF }' \
+      "$tmp/indirect.txt" >>"$page"
+}
+
 # ---------------------------------------------------------------- threads
 threads_table() {
   section "Threads"
@@ -450,7 +469,7 @@ lsp_table() {
 }
 
 # ---------------------------------------------------------------- the page
-sections=(cornell adaptive bench threads mesh embree primitives csg instances baseline parse lsp)
+sections=(cornell adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done

@@ -9,6 +9,7 @@
 #include "lang/lower.h"
 #include "lang/parser.h"
 #include "render/memory_budget.h"
+#include "render/emitters.h"
 
 namespace wsd::lang {
 
@@ -94,7 +95,20 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
             diags.error(Span{file, 0, 0}, "the scene could not be built");
         if (diags.error_count() > errors_before) return std::nullopt;
     }
-    if (!options.fragment && lowered.spec.lights.empty()) {
+    if (!options.fragment && lowered.spec.settings.indirect_samples > 0) {
+        // An emissive plane has infinite area: it cannot be sampled as a light.
+        for (size_t i = 0; i < lowered.spec.shapes.size(); ++i) {
+            const render::ShapeSpec& shape = lowered.spec.shapes[i];
+            if (shape.kind != render::ShapeKind::Plane || shape.material >= lowered.spec.materials.size() ||
+                lowered.spec.materials[shape.material].emission == render::Color(0))
+                continue;
+            Diagnostic& d = diags.warning(loaded.shape_spans[i],
+                                          "an emissive plane is seen but not sampled as a light (its area is "
+                                          "infinite): it lights the scene only where indirect paths meet it");
+            d.help.push_back("use a box, disc or mesh for a glowing panel");
+        }
+    }
+    if (!options.fragment && lowered.spec.lights.empty() && !render::has_emission(lowered.spec)) {
         // Not an error: an ambient-only scene is valid, but it is rarely what was meant.
         const Span at = lowered.has_camera ? lowered.spans[lowered.spec.camera.tag].span : Span{file, 0, 0};
         Diagnostic& d = diags.warning(at, "no lights: only ambient light");

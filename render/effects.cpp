@@ -47,6 +47,10 @@ const char* effect_name(Effect e) {
             return "adaptive area lights";
         case Effect::Csg:
             return "CSG";
+        case Effect::Emission:
+            return "emitters";
+        case Effect::IndirectLight:
+            return "indirect light";
     }
     return "?";
 }
@@ -69,6 +73,7 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
                 set.add(Effect::AdaptiveLights);
         }
     }
+    if (spec.settings.indirect_samples > 0) set.add(Effect::IndirectLight);
     if (spec.settings.supersamples > 1) {
         set.add(Effect::Supersampling);
         if (spec.settings.adaptive_supersampling) set.add(Effect::AdaptiveSupersampling);
@@ -93,6 +98,7 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
                 i);
         }
         if (m.bump && m.bump_strength > 0) use(Effect::Bumps, i);
+        if (m.emission != Color(0)) use(Effect::Emission, i);
     };
     // A shape's effects with its material; an instance's are its members' (each with its own
     // material, or the instance's where it inherits), attributed to the instance.

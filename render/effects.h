@@ -26,8 +26,10 @@ enum class Effect : uint8_t {
     AdaptiveSupersampling,  // adaptive_supersampling with supersamples > 1
     AdaptiveLights,         // an area light with adaptive sampling
     Csg,                    // a CSG solid (union, intersection, difference)
+    Emission,               // a material with emission (an emitter)
+    IndirectLight,          // settings.indirect_samples > 0
 };
-inline constexpr size_t kEffectCount = 14;
+inline constexpr size_t kEffectCount = 16;
 
 const char* effect_name(Effect e);
 

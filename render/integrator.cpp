@@ -14,7 +14,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "render/indirect.h"
 #include "render/light_terms.h"
+#include "render/media.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 #include "render/shaft.h"
@@ -49,23 +51,6 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // reached by pathological stacks of glass; it bounds the loop, it is not a tolerance).
 constexpr int kMaxShadowCrossings = 1024;
 
-double max_component(const Vec3& v) {
-    return std::max(v.x, std::max(v.y, v.z));
-}
-
-// Beer–Lambert transmittance along `distance` world units inside material m.
-Color absorb(const Material& m, double distance) {
-    if (!m.absorbs) return Color(1);
-    return glm::exp(-m.absorption * distance);
-}
-
-// A ray that never leaves an absorbing medium: 0 where the medium absorbs, 1 where it does not
-// (exp(−0·∞) would be NaN).
-Color absorb_forever(const Material& m) {
-    if (!m.absorbs) return Color(1);
-    return {m.absorption.x > 0 ? 0.0 : 1.0, m.absorption.y > 0 ? 0.0 : 1.0, m.absorption.z > 0 ? 0.0 : 1.0};
-}
-
 struct Path {
     uint64_t key;
     int depth;    // reflections and refractions so far
@@ -73,7 +58,8 @@ struct Path {
     int medium;   // material index of the transmissive object the ray travels in, or −1
 };
 
-template <bool kTransmissive, bool kAdaptive>
+// kLight: 0 = no emission anywhere; 1 = emission, seen only; 2 = indirect light (indirect.h).
+template <bool kTransmissive, bool kAdaptive, int kLight = 0>
 class WhittedTracer final : public Tracer {
     // A shadow ray's transmittance: RGB when light can pass through glass, else 0 or 1.
     using Vis = std::conditional_t<kTransmissive, Color, double>;
@@ -88,7 +74,8 @@ public:
           force_adaptive_(options.adaptive_lights),
           max_depth_(scene.settings().max_depth),
           bailout_(scene.settings().bailout),
-          background_(scene.settings().background) {
+          background_(scene.settings().background),
+          indirect_(scene, stats, *this) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
         cells_.resize(most);
@@ -115,6 +102,12 @@ public:
     Color trace_ray(const Ray& ray, uint64_t key) override {
         ++stats_.camera_rays;
         return trace(ray, Path{key, 0, Vec3(1), -1});
+    }
+
+    // The direct term at a hit that an indirect path reaches (V: towards where the path came from).
+    Color lights(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V, const Color& c,
+                 double t, uint64_t key) {
+        return direct(s, m, N, V, c, t, key);
     }
 
 private:
@@ -159,7 +152,12 @@ private:
         const double r = m.reflection;
 
         Color colour = (1.0 - t) * m.ambient * c;
+        if constexpr (kLight > 0) colour += m.emission;
         colour += direct(s, m, N, V, c, t, path.key);
+        if constexpr (kLight == 2) {
+            const Color rho = (1.0 - t) * m.diffuse * c;
+            if (max_component(rho) > 0) colour += rho * indirect_.gather(s, N, path.key, medium);
+        }
         if (path.depth >= max_depth_ || (r <= 0 && t <= 0)) return colour;
 
         double fresnel = 0;
@@ -472,14 +470,20 @@ private:
     int max_depth_;
     double bailout_;
     Color background_;
-    LightCells cells_;            // area lights: the current point's cells and their terms
-    std::vector<Vis> vis_;        // adaptive lights: per-cell visibility of the current point
-    std::vector<uint8_t> state_;  // adaptive lights: kUnknown, kFilled or kProbed per cell
+    IndirectGather<WhittedTracer> indirect_;  // used when kLight == 2
+    LightCells cells_;                        // area lights: the current point's cells and their terms
+    std::vector<Vis> vis_;                    // adaptive lights: per-cell visibility of the current point
+    std::vector<uint8_t> state_;              // adaptive lights: kUnknown, kFilled or kProbed per cell
 };
 
 }  // namespace
 
 std::unique_ptr<Tracer> make_tracer(const Scene& scene, const TracerOptions& options, RayStats& stats) {
+    // Emission and indirect light take the general tracer (their cost is elsewhere).
+    if (scene.settings().indirect_samples > 0)
+        return std::make_unique<WhittedTracer<true, true, 2>>(scene, options, stats);
+    if (scene.effects().has(Effect::Emission))
+        return std::make_unique<WhittedTracer<true, true, 1>>(scene, options, stats);
     if (!options.specialise) return std::make_unique<WhittedTracer<true, true>>(scene, options, stats);
     const bool transmissive = scene.geometry().has_transmissive() || scene.effects().has(Effect::Refraction);
     const bool adaptive = scene.effects().has(Effect::AdaptiveLights) ||

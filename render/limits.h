@@ -15,7 +15,9 @@ inline constexpr int kMaxImageSide = 100000;
 inline constexpr long long kMaxPixels = 1LL << 28;
 
 inline constexpr int kMaxSupersamples = 4096;
-inline constexpr int kMaxDepth = 256;  // reflection and refraction bounces
+inline constexpr int kMaxDepth = 256;              // reflection and refraction bounces
+inline constexpr int kMaxIndirectSamples = 65536;  // indirect paths a camera sample
+inline constexpr int kMaxIndirectBounces = 64;     // diffuse reflections an indirect path makes
 inline constexpr double kMaxSeed = 4294967295.0;
 
 // An area light's sample grid: each side, and the cells of the whole grid. The command line's

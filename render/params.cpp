@@ -138,7 +138,13 @@ ElementTable settings_table() {
           {},
           "colour of rays that miss",
           vec3_member<&Settings::background>()},
-         {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed", number_member<&Settings::seed>()}},
+         {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed", number_member<&Settings::seed>()},
+         {"indirect_samples", FieldType::Integer, between(0, kMaxIndirectSamples),
+          "Monte Carlo paths of indirect light a camera sample gathers (0: off)",
+          number_member<&Settings::indirect_samples>()},
+         {"indirect_bounces", FieldType::Integer, between(1, kMaxIndirectBounces),
+          "the most diffuse reflections an indirect path makes",
+          number_member<&Settings::indirect_bounces>()}},
         &kDefaultSettings};
 }
 
@@ -365,6 +371,11 @@ ElementTable material_table() {
           {},
           "absorption per unit length inside",
           vec3_member<&MaterialSpec::absorption>()},
+         {"emission",
+          FieldType::Colour,
+          {},
+          "radiance the surface emits from both sides",
+          vec3_member<&MaterialSpec::emission>()},
          {"bump", FieldType::Texture, {}, "Perlin normal perturbation", {}, {}, "—"},
          {"bump_strength", FieldType::Number, at_least(0), "how far the normal is bent",
           number_member<&MaterialSpec::bump_strength>()}},

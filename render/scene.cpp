@@ -285,7 +285,8 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
         }
         m.color = ms.color;
         m.bump_strength = ms.bump_strength;
-        m.ambient = ms.ambient.value_or(spec.settings.ambient);
+        // Indirect light replaces the ambient term.
+        m.ambient = spec.settings.indirect_samples > 0 ? 0.0 : ms.ambient.value_or(spec.settings.ambient);
         m.diffuse = ms.diffuse;
         m.specular = ms.specular;
         m.shininess = ms.shininess;
@@ -294,6 +295,8 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
         m.ior = ms.ior;
         m.absorption = ms.absorption;
         m.absorbs = ms.transmission > 0 && ms.absorption != Color(0);
+        m.emission = ms.emission;
+        m.emits = ms.emission != Color(0);
         scene->materials_.push_back(std::move(m));
     }
 
@@ -327,6 +330,10 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
     }
     if (shapes_ok) scene->geometry_ = Geometry::build(spec, errors, use_bvh, threads);
     if (errors.size() != errors_before || !scene->geometry_ || !materials_ok) return nullptr;
+    if (spec.settings.indirect_samples > 0) {
+        scene->emitters_ = Emitters::build(spec, errors);
+        if (errors.size() != errors_before) return nullptr;
+    }
 
     scene->effects_ = analyse_effects(spec);
     scene->compute_transmissive_bounds(spec);

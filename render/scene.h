@@ -8,6 +8,7 @@
 
 #include "render/camera.h"
 #include "render/effects.h"
+#include "render/emitters.h"
 #include "render/geometry.h"
 #include "render/lights.h"
 #include "render/renderer.h"
@@ -25,6 +26,8 @@ struct Material {
     double reflection = 0, transmission = 0, ior = 1.5;
     Color absorption{0};
     bool absorbs = false;  // transmissive with non-zero absorption
+    Color emission{0};     // radiance emitted from both sides
+    bool emits = false;    // emission ≠ 0
 };
 
 class Scene {
@@ -40,6 +43,8 @@ public:
         return s.member == SurfaceHit::kNoMember ? object_to_world_[s.shape] : geometry_->member_to_world(s);
     }
     const EffectSet& effects() const { return effects_; }
+    // Emissive surfaces sampled as lights (empty unless indirect light is on).
+    const Emitters& emitters() const { return emitters_; }
     bool has_multi_cell_area_light() const { return multi_cell_area_light_; }
     // False when the segment a→b certainly crosses no transmissive surface (it misses the
     // bounding boxes of every transmissive shape), so a shadow ray needs no transmissive walk.
@@ -58,6 +63,7 @@ private:
     std::vector<Material> materials_;
     std::vector<Mat4> object_to_world_;
     EffectSet effects_;
+    Emitters emitters_;
     struct Bounds {
         Vec3 lo, hi;
     };

@@ -47,6 +47,7 @@ struct MaterialSpec {
     double transmission = 0.0;
     double ior = 1.5;
     Color absorption{0, 0, 0};
+    Color emission{0, 0, 0};          // radiance emitted from both sides
     std::optional<TextureSpec> bump;  // always a Perlin texture
     double bump_strength = 0.3;
     uint32_t tag = 0;
@@ -160,6 +161,8 @@ struct Settings {
     double ambient = 0.2;
     Color background{0, 0, 0};
     uint32_t seed = 0;
+    int indirect_samples = 0;  // Monte Carlo paths a camera sample's diffuse hits gather; 0: off
+    int indirect_bounces = 3;  // the most diffuse reflections a path makes
 };
 
 struct SceneSpec {

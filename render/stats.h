@@ -21,8 +21,12 @@ struct RayStats {
     uint64_t texture_evals = 0;  // image/checker lookups
     uint64_t noise_evals = 0;    // Perlin evaluations (textures and bumps)
     uint64_t nonfinite_samples = 0;
-    uint64_t rejected_rays = 0;    // NaN/Inf rays refused before traversal
-    uint64_t adaptive_pixels = 0;  // pixels that took the full supersampling grid
+    uint64_t rejected_rays = 0;     // NaN/Inf rays refused before traversal
+    uint64_t adaptive_pixels = 0;   // pixels that took the full supersampling grid
+    uint64_t indirect_paths = 0;    // Monte Carlo paths of indirect light
+    uint64_t indirect_bounces = 0;  // their diffuse reflections (each path makes at least one)
+    uint64_t indirect_rays = 0;     // rays they traced (diffuse and specular bounces)
+    uint64_t emitter_samples = 0;   // points chosen on emissive surfaces (next-event estimation)
 
     RayStats& operator+=(const RayStats& o) {
         camera_rays += o.camera_rays;
@@ -43,9 +47,15 @@ struct RayStats {
         nonfinite_samples += o.nonfinite_samples;
         rejected_rays += o.rejected_rays;
         adaptive_pixels += o.adaptive_pixels;
+        indirect_paths += o.indirect_paths;
+        indirect_bounces += o.indirect_bounces;
+        indirect_rays += o.indirect_rays;
+        emitter_samples += o.emitter_samples;
         return *this;
     }
-    uint64_t ray_queries() const { return camera_rays + shadow_rays + reflection_rays + refraction_rays; }
+    uint64_t ray_queries() const {
+        return camera_rays + shadow_rays + reflection_rays + refraction_rays + indirect_rays;
+    }
 };
 
 }  // namespace wsd::render

@@ -678,3 +678,13 @@ TEST_CASE("a flat sum of 1,000,000 terms evaluates", "[hard-cases][chain][large]
     REQUIRE(v);
     CHECK(v->number() == 1'000'000);
 }
+
+TEST_CASE("R86: a zero-area emitter is an error at its material; negative emission is refused",
+          "[hard-cases][R86]") {
+    const std::string scene = camera + "settings { indirect_samples 1 }\n" +
+                              "sphere { center <0, 0, 0>  radius 1e-170  material { emission <1, 1, 1> } }\n";
+    const Outcome out = load(scene, "r86.wsd");
+    expect_error(out, "r86.wsd:3:52", "an emissive sphere must have a finite, non-zero area");
+    expect_error(load(camera + "sphere { center <0, 0, 0>  radius 1  material { emission <0, -1, 0> } }\n"),
+                 "r54.wsd:2:58", "'emission' must have components >= 0, found <0, -1, 0>");
+}
