@@ -19,6 +19,7 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     if (seed) s.seed = *seed;
     if (adaptive_supersampling) s.adaptive_supersampling = *adaptive_supersampling;
     if (bailout) s.bailout = *bailout;
+    if (caustic_photons) s.caustic_photons = *caustic_photons;
     for (render::LightSpec& light : spec.lights) {
         if (light.kind != render::LightKind::Area) continue;
         if (light_samples) light.samples_u = light.samples_v = *light_samples;

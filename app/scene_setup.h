@@ -22,6 +22,7 @@ struct SceneOverrides {
     std::optional<bool> adaptive_supersampling;
     std::optional<bool> adaptive_lights;  // every area light's own `adaptive` flag
     std::optional<double> bailout;        // adaptive depth: settings.bailout
+    std::optional<int> caustic_photons;   // settings.caustic_photons
 
     void apply(render::SceneSpec& spec) const;
 };

@@ -26,8 +26,9 @@ enum class Effect : uint8_t {
     AdaptiveSupersampling,  // adaptive_supersampling with supersamples > 1
     AdaptiveLights,         // an area light with adaptive sampling
     Csg,                    // a CSG solid (union, intersection, difference)
+    Caustics,               // caustic_photons > 0 with a light, an object to focus it and one to receive it
 };
-inline constexpr size_t kEffectCount = 14;
+inline constexpr size_t kEffectCount = 15;
 
 const char* effect_name(Effect e);
 

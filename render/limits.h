@@ -17,6 +17,8 @@ inline constexpr long long kMaxPixels = 1LL << 28;
 inline constexpr int kMaxSupersamples = 4096;
 inline constexpr int kMaxDepth = 256;  // reflection and refraction bounces
 inline constexpr double kMaxSeed = 4294967295.0;
+// Caustic photons shot (each stored one takes 48 bytes).
+inline constexpr int kMaxCausticPhotons = 100000000;
 
 // An area light's sample grid: each side, and the cells of the whole grid. The command line's
 // `--light-samples N` makes N×N grids, so its N stops at the square root of the cell limit.

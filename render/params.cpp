@@ -138,7 +138,10 @@ ElementTable settings_table() {
           {},
           "colour of rays that miss",
           vec3_member<&Settings::background>()},
-         {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed", number_member<&Settings::seed>()}},
+         {"seed", FieldType::Integer, between(0, kMaxSeed), "random seed", number_member<&Settings::seed>()},
+         {"caustic_photons", FieldType::Integer, between(0, kMaxCausticPhotons),
+          "photons shot through mirrors and glass for caustics (0: none)",
+          number_member<&Settings::caustic_photons>()}},
         &kDefaultSettings};
 }
 

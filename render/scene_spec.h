@@ -159,6 +159,7 @@ struct Settings {
     double ambient = 0.2;
     Color background{0, 0, 0};
     uint32_t seed = 0;
+    int caustic_photons = 0;  // 0: no caustics
 };
 
 struct SceneSpec {

@@ -23,6 +23,10 @@ struct RayStats {
     uint64_t nonfinite_samples = 0;
     uint64_t rejected_rays = 0;    // NaN/Inf rays refused before traversal
     uint64_t adaptive_pixels = 0;  // pixels that took the full supersampling grid
+    uint64_t photons_shot = 0;     // caustic photons shot, and stored on diffuse surfaces
+    uint64_t photons_stored = 0;
+    uint64_t photon_lookups = 0;   // caustic estimates at shading points
+    uint64_t photons_visited = 0;  // photons those estimates looked at (the gather cost)
 
     RayStats& operator+=(const RayStats& o) {
         camera_rays += o.camera_rays;
@@ -43,6 +47,10 @@ struct RayStats {
         nonfinite_samples += o.nonfinite_samples;
         rejected_rays += o.rejected_rays;
         adaptive_pixels += o.adaptive_pixels;
+        photons_shot += o.photons_shot;
+        photons_stored += o.photons_stored;
+        photon_lookups += o.photon_lookups;
+        photons_visited += o.photons_visited;
         return *this;
     }
     uint64_t ray_queries() const { return camera_rays + shadow_rays + reflection_rays + refraction_rays; }
