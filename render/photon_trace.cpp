@@ -409,6 +409,19 @@ CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threa
         // A little larger than the half-diagonal: rounding never leaves the object's edge outside.
         targets.push_back({c, 0.5 * glm::length(b.hi - b.lo) * (1 + 1e-6) + 1e-9});
     }
+    // A sphere's own bound is tighter than its box's (√3 times smaller: three times the photons
+    // reach it): its centre and its radius times the transform's largest stretch.
+    if (targets.size() == objects.focusing.size()) {
+        for (size_t k = 0; k < targets.size(); ++k) {
+            const ShapeSpec& sh = spec.shapes[objects.focusing[k]];
+            if (sh.kind != ShapeKind::Sphere) continue;
+            const Mat4& m = sh.object_to_world;
+            const double stretch =
+                std::max({glm::length(Vec3(m[0])), glm::length(Vec3(m[1])), glm::length(Vec3(m[2]))});
+            const Target own{Vec3(m * glm::dvec4(sh.center, 1.0)), sh.radius * stretch * (1 + 1e-6) + 1e-9};
+            if (own.radius < targets[k].radius) targets[k] = own;
+        }
+    }
 
     // The budget over (light, target) pairs by light colour × intensity × solid angle.
     const auto& lights = scene.lights();
