@@ -6,8 +6,8 @@
 #ifndef (PHOTONS) #declare PHOTONS = 400000; #end
 global_settings { max_trace_level 9 ambient_light 1 assumed_gamma 1.0
   photons { count PHOTONS  max_trace_level 9  autostop 0 } }
-camera { perspective location <0, 0, -550> look_at <0, 0, 500> up y right x angle 60 }
-light_source { <0, 590, 600> color rgb 0.9
+camera { perspective location <0, 300, -500> look_at <-50, -350, 600> up y right x angle 60 }
+light_source { <0, 590, 1000> color rgb 0.9
   area_light <150, 0, 0>, <0, 0, 150>, 6, 6 jitter
   photons { refraction on reflection on } }
 #declare Flat = finish { ambient 0.1 diffuse 1 specular 0 }
