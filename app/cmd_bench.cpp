@@ -18,6 +18,8 @@
 #include "app/io_util.h"
 #include "app/progress.h"
 #include "app/signals.h"
+#include "render/limits.h"
+#include "render/scene.h"
 
 namespace wsd::app {
 
@@ -35,6 +37,7 @@ struct SceneFacts {
     int width = 0, height = 0, supersamples = 1, max_depth = 0;
     uint32_t seed = 0;
     bool area_lights = false;
+    int caustic_photons = 0;
     std::string light_grid;  // of the first area light, e.g. "4x4"
     int indirect_samples = 0, indirect_bounces = 3;
 };
@@ -69,9 +72,18 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
     load_options.adjust = [&](render::SceneSpec& spec) { overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
+    const double cpu0_load = cpu_seconds_now();
     if (const int s = load_scene_text(path, text, load_options, sources, loaded, false); s != exit_code::ok)
         return s;
+    const double cpu1 = cpu_seconds_now();
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
+    // Caustic photons are shot while the scene is built, once for every repeat: their time is
+    // added to each render's (the load's CPU time in the share the photon map took of the build).
+    const double photon_wall = loaded->scene->caustic_build().seconds;
+    const double photon_cpu =
+        loaded->scene->build_seconds() > 0
+            ? (cpu1 - cpu0_load) * std::min(1.0, photon_wall / loaded->scene->build_seconds())
+            : 0.0;
     std::vector<double> walls, cpus;
     for (int r = 0; r < repeat; ++r) {
         ProgressReporter progress(progress_mode(args.quiet), label);
@@ -85,8 +97,9 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
         const double cpu0 = cpu_seconds_now();
         const auto wall0 = std::chrono::steady_clock::now();
         render::RenderResult result = render::render(*loaded->scene, options);
-        walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count());
-        cpus.push_back(cpu_seconds_now() - cpu0);
+        walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() +
+                        photon_wall);
+        cpus.push_back(cpu_seconds_now() - cpu0 + photon_cpu);
         progress.finish(!result.cancelled);
         if (result.cancelled || signals.cancelled())
             return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
@@ -158,6 +171,19 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
     } else {
         notes.push_back("indirect_samples and indirect_bounces skipped: the scene has no indirect light");
     }
+    // Caustic photons: from a sixteenth of the scene's own count to four times it.
+    if (facts.caustic_photons > 0) {
+        const std::vector<int> shares = quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 4, 16, 64};
+        for (const int share : shares) {
+            const long long n =
+                std::min<long long>(render::kMaxCausticPhotons,
+                                    std::max<long long>(1, (long long)facts.caustic_photons * share / 16));
+            add("caustic_photons", std::to_string(n),
+                [&, n](SceneOverrides& o) { o.caustic_photons = int(n); });
+        }
+    } else {
+        notes.push_back("caustic_photons skipped: the scene asks for no caustic photons");
+    }
     return settings;
 }
 
@@ -193,6 +219,7 @@ int read_scene_facts(const BenchArgs& args, const std::string& text, const lang:
     facts.seed = st.seed;
     facts.indirect_samples = st.indirect_samples;
     facts.indirect_bounces = st.indirect_bounces;
+    facts.caustic_photons = st.caustic_photons;
     for (const render::LightSpec& l : loaded->spec.lights)
         if (l.kind == render::LightKind::Area && !facts.area_lights) {
             facts.area_lights = true;
@@ -219,6 +246,10 @@ SceneOverrides reference_overrides(const BenchArgs& args, const SceneFacts& fact
     // Indirect light: the scene's paths a camera sample (the reference's many camera samples
     // multiply them), and at least 8 bounces.
     if (facts.indirect_samples > 0) reference.indirect_bounces = std::max(facts.indirect_bounces, 8);
+    // Caustics: eight times the sweep's largest photon count (32 times the scene's own).
+    if (facts.caustic_photons > 0)
+        reference.caustic_photons =
+            int(std::min<long long>(render::kMaxCausticPhotons, 32LL * facts.caustic_photons));
     info.reference_settings =
         "supersamples " + std::to_string(*reference.supersamples) +
         (facts.area_lights ? ", light samples " + std::to_string(ref_light) + "x" + std::to_string(ref_light)
@@ -227,6 +258,8 @@ SceneOverrides reference_overrides(const BenchArgs& args, const SceneFacts& fact
         (facts.indirect_samples > 0 ? ", indirect samples " + std::to_string(facts.indirect_samples) +
                                           ", indirect bounces " + std::to_string(*reference.indirect_bounces)
                                     : std::string()) +
+        (reference.caustic_photons ? ", caustic photons " + std::to_string(*reference.caustic_photons)
+                                   : std::string()) +
         ", no adaptive sampling, bailout 0, seed " + std::to_string(*reference.seed);
     return reference;
 }

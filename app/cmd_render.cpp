@@ -245,6 +245,7 @@ int report_stats(const RenderArgs& args, const std::string& stats_json, const la
     // The loader times the whole build_scene call; the scene's own build time is part of it.
     report.build_seconds = loaded.build_seconds;
     report.render_seconds = result.render_seconds;
+    report.photon_seconds = result.photon_seconds;
     report.peak_memory_bytes = peak_memory_bytes();
     report.effects = result.effects;
     report.progressive = result.progressive;

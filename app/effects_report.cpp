@@ -5,6 +5,7 @@
 
 #include "lang/object_value.h"
 #include "render/effects.h"
+#include "render/photon_trace.h"
 
 namespace wsd::app {
 
@@ -38,19 +39,43 @@ std::string object_name(const lang::LoadedScene& scene, const lang::SourceManage
            std::to_string(at.column);
 }
 
+// The objects of a list, the first max_listed by name.
+void print_objects(const lang::LoadedScene& scene, const lang::SourceManager& sources,
+                   const std::vector<uint32_t>& shapes, std::ostream& out) {
+    for (size_t k = 0; k < shapes.size() && k < max_listed; ++k)
+        out << (k ? ", " : "") << object_name(scene, sources, shapes[k]);
+    if (shapes.size() > max_listed) out << " and " << shapes.size() - max_listed << " more";
+}
+
+// Caustics: the objects that focus light and those that receive it, or why none are shot.
+void print_caustics(const lang::LoadedScene& scene, const lang::SourceManager& sources, std::ostream& out) {
+    const render::CausticObjects objects = render::caustic_objects(scene.spec);
+    const std::string skipped = render::caustics_skipped(scene.spec, objects);
+    if (!skipped.empty()) {
+        out << "    caustics: none shot (" << skipped << ")\n";
+        return;
+    }
+    out << "    caustics: focused by ";
+    print_objects(scene, sources, objects.focusing, out);
+    out << "; received by ";
+    print_objects(scene, sources, objects.receiving, out);
+    out << '\n';
+}
+
 }  // namespace
 
 void print_effects(const lang::LoadedScene& scene, const lang::SourceManager& sources, std::ostream& out) {
     const render::SceneSpec& spec = scene.spec;
     const render::EffectSet effects = render::analyse_effects(spec);
-    if (effects.mask == 0) {
+    const bool caustics_asked = spec.settings.caustic_photons > 0;
+    if (effects.mask == 0 && !caustics_asked) {
         out << "  effects: none (local shading only)\n";
         return;
     }
     out << "  effects:\n";
     for (size_t i = 0; i < render::kEffectCount; ++i) {
         const auto effect = static_cast<render::Effect>(i);
-        if (!effects.has(effect)) continue;
+        if (!effects.has(effect) || effect == render::Effect::Caustics) continue;
         out << "    " << render::effect_name(effect);
         const std::vector<uint32_t>& shapes = effects.shapes[i];
         if (effect == render::Effect::IndirectLight) {
@@ -63,12 +88,10 @@ void print_effects(const lang::LoadedScene& scene, const lang::SourceManager& so
             continue;
         }
         out << ": ";
-        for (size_t k = 0; k < shapes.size() && k < max_listed; ++k) {
-            out << (k ? ", " : "") << object_name(scene, sources, shapes[k]);
-        }
-        if (shapes.size() > max_listed) out << " and " << shapes.size() - max_listed << " more";
+        print_objects(scene, sources, shapes, out);
         out << '\n';
     }
+    if (caustics_asked) print_caustics(scene, sources, out);
 }
 
 }  // namespace wsd::app

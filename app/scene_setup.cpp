@@ -21,6 +21,7 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     if (bailout) s.bailout = *bailout;
     if (indirect_samples) s.indirect_samples = *indirect_samples;
     if (indirect_bounces) s.indirect_bounces = *indirect_bounces;
+    if (caustic_photons) s.caustic_photons = *caustic_photons;
     for (render::LightSpec& light : spec.lights) {
         if (light.kind != render::LightKind::Area) continue;
         if (light_samples) light.samples_u = light.samples_v = *light_samples;

@@ -97,6 +97,14 @@ std::string stats_table(const RenderReport& r) {
     line(out, "Adaptive full-grid pixels:", std::to_string(s.adaptive_pixels));
     line(out, "Rejected rays (NaN/Inf):", std::to_string(s.rejected_rays));
     line(out, "Non-finite samples:", std::to_string(s.nonfinite_samples));
+    line(out, "Caustic photons:",
+         std::to_string(s.photons_shot) + " shot, " + std::to_string(s.photons_stored) + " stored");
+    line(out, "Caustic lookups:",
+         std::to_string(s.photon_lookups) + "  (" +
+             (s.photon_lookups
+                  ? fixed(static_cast<double>(s.photons_visited) / static_cast<double>(s.photon_lookups), 1)
+                  : std::string("-")) +
+             " photons visited each)");
     std::string effects;
     for (const std::string& e : r.effects) effects += (effects.empty() ? "" : ", ") + e;
     line(out, "Effects:", effects.empty() ? "-" : effects);
@@ -116,6 +124,7 @@ std::string stats_table(const RenderReport& r) {
     }
     line(out, "Parse time:", fixed(r.parse_seconds, 3) + " s");
     line(out, "Build time:", fixed(r.build_seconds, 3) + " s");
+    if (s.photons_shot > 0) line(out, "  caustic photon map:", fixed(r.photon_seconds, 3) + " s");
     line(out, "Render time:",
          fixed(r.render_seconds, 3) + " s  (" +
              (r.threads > 0 ? counted(static_cast<uint64_t>(r.threads), "thread")
@@ -165,8 +174,13 @@ std::string stats_json(const RenderReport& r) {
         {"rejected_rays", s.rejected_rays},
         {"adaptive_pixels", s.adaptive_pixels},
         {"nonfinite_samples", s.nonfinite_samples},
+        {"photons_shot", s.photons_shot},
+        {"photons_stored", s.photons_stored},
+        {"photon_lookups", s.photon_lookups},
+        {"photons_visited", s.photons_visited},
         {"parse_seconds", seconds(r.parse_seconds)},
         {"build_seconds", seconds(r.build_seconds)},
+        {"photon_map_seconds", seconds(r.photon_seconds)},
         {"render_seconds", seconds(r.render_seconds)},
         {"mrays_per_second", seconds(mrays_per_second(r))},
         {"peak_memory_bytes", r.peak_memory_bytes},

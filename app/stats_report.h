@@ -20,6 +20,7 @@ struct RenderReport {
     int threads = 0;
     render::RayStats stats;
     double parse_seconds = 0, build_seconds = 0, render_seconds = 0;
+    double photon_seconds = 0;  // the caustic photon map's part of build_seconds
     uint64_t peak_memory_bytes = 0;
     std::vector<std::string> effects;
     render::ProgressiveReport progressive;  // used: a progressive render's passes and estimate

@@ -118,6 +118,33 @@ cornell_table() {
        "only)."
 }
 
+# ---------------------------------------------------------------- caustics against POV-Ray's photons
+caustics_table() {
+  section "Caustics against POV-Ray's photons"
+  if ! command -v povray >/dev/null; then
+    para "POV-Ray is not installed on this machine (\`apt-get install povray\`), so this comparison was" \
+         "not made."
+    return
+  fi
+  local size=300 counts="25000 100000 400000"
+  ((quick)) && size=96 counts="10000 40000"
+  log "caustics against POV-Ray's photons at ${size}x${size}"
+  bench/caustics_vs_povray.sh "$size" 1 "$counts" >"$tmp/caustics.txt"
+  para "\`bench/caustics_vs_povray.sh $size 1 \"$counts\"\`: examples/cornell-caustics.wsd and its POV-Ray" \
+       "port bench/scenes/cornell-caustics.pov (\`photons { count N }\`) at ${size}×${size}, 4 camera rays a" \
+       "pixel, one thread, each photon count for both renderers, every image compared with wsd's" \
+       "converged reference (32 times the largest count, 16 rays a pixel) by \`wsd diff\` on display" \
+       "values. CPU-s is user + system time of the whole process (photons included)." \
+       "" \
+       "| renderer | photons | CPU-s | RMSE | PSNR (dB) |" \
+       "|---|---:|---:|---:|---:|"
+  awk '$1 == "wsd" || $1 == "povray" { printf "| %s | %s | %s | %s | %s |\n", ($1 == "wsd" ? "wsd" : "POV-Ray"), $2, $3, $4, $5 }' \
+    "$tmp/caustics.txt" >>"$page"
+  para "" \
+       "POV-Ray's photons follow its own conventions (its photon spacing and gather), so its error includes" \
+       "any difference of model between the two renderers, not only noise."
+}
+
 # ---------------------------------------------------------------- adaptive sampling
 adaptive_table() {
   section "Adaptive sampling against full sampling"
@@ -469,7 +496,7 @@ lsp_table() {
 }
 
 # ---------------------------------------------------------------- the page
-sections=(cornell adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp)
+sections=(cornell caustics adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done

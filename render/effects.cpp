@@ -1,6 +1,8 @@
 // Effect analysis of a SceneSpec: a pass over lights, settings and each shape's material.
 #include "render/effects.h"
 
+#include "render/photon_trace.h"
+
 namespace wsd::render {
 
 namespace {
@@ -51,6 +53,8 @@ const char* effect_name(Effect e) {
             return "emitters";
         case Effect::IndirectLight:
             return "indirect light";
+        case Effect::Caustics:
+            return "caustics";
     }
     return "?";
 }
@@ -118,6 +122,14 @@ EffectSet analyse_effects(const SceneSpec& spec, bool force_adaptive_lights) {
         }
         for (const ShapeSpec& member : spec.prototypes[sh.prototype].shapes)
             shape_effects(member, member.material == kInheritMaterial ? sh.material : member.material, i);
+    }
+    if (spec.settings.caustic_photons > 0) {
+        // The objects that focus light (those the photons are aimed at).
+        const CausticObjects objects = caustic_objects(spec);
+        if (caustics_skipped(spec, objects).empty()) {
+            set.add(Effect::Caustics);
+            set.shapes[size_t(Effect::Caustics)] = objects.focusing;
+        }
     }
     return set;
 }

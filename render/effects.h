@@ -28,8 +28,9 @@ enum class Effect : uint8_t {
     Csg,                    // a CSG solid (union, intersection, difference)
     Emission,               // a material with emission (an emitter)
     IndirectLight,          // settings.indirect_samples > 0
+    Caustics,               // caustic_photons > 0 with a light, an object to focus it and one to receive it
 };
-inline constexpr size_t kEffectCount = 16;
+inline constexpr size_t kEffectCount = 17;
 
 const char* effect_name(Effect e);
 

@@ -2,6 +2,7 @@
 //   local  = (1 − t)·ambient·c + Σ_lights (1/n) Σ_s visible_s·light·[(1 − t)·c·diffuse·max(0, N·L_s)
 //                                                                  + specular·max(0, R_s·V)^shininess]
 //   colour = local + (r + t·F)·trace(reflected) + t·(1 − F)·c·trace(refracted)
+// With caustic photons, local also holds (1 − t)·c·diffuse·E_caustic (photon_map.h).
 // Specialised on two scene properties (template parameters): transmissive objects (coloured shadow
 // transmittance, Fresnel, absorption) and adaptive area lights. The general tracer enables both and
 // tests every runtime condition; the two give identical images because the specialised one only
@@ -17,6 +18,7 @@
 #include "render/indirect.h"
 #include "render/light_terms.h"
 #include "render/media.h"
+#include "render/photon_map.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 #include "render/shaft.h"
@@ -75,7 +77,8 @@ public:
           max_depth_(scene.settings().max_depth),
           bailout_(scene.settings().bailout),
           background_(scene.settings().background),
-          indirect_(scene, stats, *this) {
+          indirect_(scene, stats, *this),
+          caustics_(scene.caustics()) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
         cells_.resize(most);
@@ -158,6 +161,8 @@ private:
             const Color rho = (1.0 - t) * m.diffuse * c;
             if (max_component(rho) > 0) colour += rho * indirect_.gather(s, N, path.key, medium);
         }
+        if (caustics_) [[unlikely]]
+            colour += caustic(s.p, ng_v, m, c, t);
         if (path.depth >= max_depth_ || (r <= 0 && t <= 0)) return colour;
 
         double fresnel = 0;
@@ -255,6 +260,15 @@ private:
             sum += light.radiance * (kd * c * sd + m.specular * ss) * light.inv_count;
         }
         return sum;
+    }
+
+    // Caustic light on a diffuse surface: (1 − t)·c·diffuse times the photon map's irradiance,
+    // as the direct term weighs a light's. Out of line: scenes without caustics run their code.
+    [[gnu::noinline]] Color caustic(const Vec3& p, const Vec3& ng_v, const Material& m, const Color& c,
+                                    double t) {
+        const double kd = (1.0 - t) * m.diffuse;
+        if (!(kd > 0)) return Color(0);
+        return kd * c * caustics_->irradiance(p, ng_v, stats_);
     }
 
     // A spot light: a point light whose terms its cone scales (spot_factor); outside the cone it
@@ -471,6 +485,7 @@ private:
     double bailout_;
     Color background_;
     IndirectGather<WhittedTracer> indirect_;  // used when kLight == 2
+    const PhotonMap* caustics_;               // null without caustics
     LightCells cells_;                        // area lights: the current point's cells and their terms
     std::vector<Vis> vis_;                    // adaptive lights: per-cell visibility of the current point
     std::vector<uint8_t> state_;              // adaptive lights: kUnknown, kFilled or kProbed per cell

@@ -19,6 +19,8 @@ inline constexpr int kMaxDepth = 256;              // reflection and refraction 
 inline constexpr int kMaxIndirectSamples = 65536;  // indirect paths a camera sample
 inline constexpr int kMaxIndirectBounces = 64;     // diffuse reflections an indirect path makes
 inline constexpr double kMaxSeed = 4294967295.0;
+// Caustic photons shot (each stored one takes 48 bytes).
+inline constexpr int kMaxCausticPhotons = 100000000;
 
 // An area light's sample grid: each side, and the cells of the whole grid. The command line's
 // `--light-samples N` makes N×N grids, so its N stops at the square root of the cell limit.

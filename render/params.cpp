@@ -144,7 +144,10 @@ ElementTable settings_table() {
           number_member<&Settings::indirect_samples>()},
          {"indirect_bounces", FieldType::Integer, between(1, kMaxIndirectBounces),
           "the most diffuse reflections an indirect path makes",
-          number_member<&Settings::indirect_bounces>()}},
+          number_member<&Settings::indirect_bounces>()},
+         {"caustic_photons", FieldType::Integer, between(0, kMaxCausticPhotons),
+          "photons shot through mirrors and glass for caustics (0: none)",
+          number_member<&Settings::caustic_photons>()}},
         &kDefaultSettings};
 }
 

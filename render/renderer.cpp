@@ -362,6 +362,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options) {
         complete = options.aovs ? render_tiles<true>(job) : render_tiles<false>(job);
         result.stats = tally.snapshot().first;
     }
+    result.stats.photons_shot = scene.caustic_build().shot;
+    result.stats.photons_stored = scene.caustic_build().stored;
+    result.photon_seconds = scene.caustic_build().seconds;
+    if (!scene.caustic_build().skipped.empty())
+        result.effects.push_back("caustics skipped: " + scene.caustic_build().skipped);
     result.cancelled = !complete;
     if (options.progress && complete) options.progress(1.0, result.stats);
     result.render_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -82,6 +82,7 @@ struct RenderResult {
     RayStats stats;
     double build_seconds = 0;
     double render_seconds = 0;
+    double photon_seconds = 0;  // building the caustic photon map (part of build_seconds)
     bool cancelled = false;
     std::vector<std::string> effects;  // the effects the scene calls for (see effects.h)
     ProgressiveReport progressive;     // with RenderOptions::progressive

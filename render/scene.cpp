@@ -337,6 +337,7 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
 
     scene->effects_ = analyse_effects(spec);
     scene->compute_transmissive_bounds(spec);
+    if (spec.settings.caustic_photons > 0) scene->caustics_ = build_caustics(*scene, spec, threads);
     scene->build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;
 }

@@ -11,6 +11,7 @@
 #include "render/emitters.h"
 #include "render/geometry.h"
 #include "render/lights.h"
+#include "render/photon_trace.h"
 #include "render/renderer.h"
 #include "render/texture.h"
 
@@ -50,6 +51,9 @@ public:
     // bounding boxes of every transmissive shape), so a shadow ray needs no transmissive walk.
     bool may_cross_transmissive(const Vec3& a, const Vec3& b) const;
     double build_seconds() const { return build_seconds_; }
+    // The caustic photon map (null without caustics) and how it was built.
+    const PhotonMap* caustics() const { return caustics_.map.get(); }
+    const CausticBuild& caustic_build() const { return caustics_; }
 
 private:
     friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&, bool, int,
@@ -70,6 +74,7 @@ private:
     std::vector<Bounds> transmissive_bounds_;  // world boxes, padded; merged when there are many
     bool transmissive_unbounded_ = false;      // a transmissive plane: always walk
     bool multi_cell_area_light_ = false;
+    CausticBuild caustics_;
     double build_seconds_ = 0;
 };
 

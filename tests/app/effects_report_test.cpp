@@ -34,3 +34,40 @@ TEST_CASE("check --effects lists CSG with the solids that call for it", "[cli][c
     app::print_effects(scene, sources, none);
     CHECK(none.str().find("CSG") == std::string::npos);
 }
+
+TEST_CASE("check --effects names caustics' focusing and receiving objects, or why none are shot",
+          "[cli][check]") {
+    using namespace wsd;
+    lang::SourceManager sources;
+    const uint32_t file = sources.add("c.wsd", "sphere {}\nplane {}\n");
+    lang::LoadedScene scene;
+    render::MaterialSpec glass;
+    glass.transmission = 1;
+    glass.diffuse = 0;
+    scene.spec.materials = {glass, render::MaterialSpec{}};
+    render::ShapeSpec ball;
+    ball.material = 0;
+    render::ShapeSpec floor;
+    floor.kind = render::ShapeKind::Plane;
+    floor.material = 1;
+    scene.spec.shapes = {ball, floor};
+    scene.shape_spans = {lang::Span{file, 0, 6}, lang::Span{file, 10, 15}};
+    render::LightSpec light;
+    light.position = {0, 5, 0};
+    scene.spec.lights.push_back(light);
+    scene.spec.settings.caustic_photons = 1000;
+    std::ostringstream out;
+    app::print_effects(scene, sources, out);
+    CHECK(out.str().find("    caustics: focused by sphere at c.wsd:1:1; received by plane at c.wsd:2:1\n") !=
+          std::string::npos);
+
+    scene.spec.materials[0] = render::MaterialSpec{};  // nothing focuses light now
+    std::ostringstream none;
+    app::print_effects(scene, sources, none);
+    CHECK(none.str().find("    caustics: none shot (no object can focus light)\n") != std::string::npos);
+
+    scene.spec.settings.caustic_photons = 0;
+    std::ostringstream off;
+    app::print_effects(scene, sources, off);
+    CHECK(off.str().find("caustics") == std::string::npos);
+}

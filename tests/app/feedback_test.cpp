@@ -155,3 +155,23 @@ TEST_CASE("a mesh file's zero-area triangles are skipped with one warning; writt
     CHECK(r.status == 1);
     CHECK(r.err.find("face 1: degenerate triangle") != std::string::npos);
 }
+
+TEST_CASE("render --stats and --stats-json count caustic photons, their lookups and the map's time",
+          "[render][feedback]") {
+    TempDir dir;
+    write_file(dir / "c.wsd",
+               "settings { width 8  height 8  caustic_photons 5000 }\n"
+               "camera { position <0, 3, -4> look_at <0, -1, 0> }\nlight point { position <0, 10, 0> }\n"
+               "sphere { center <0, 0, 0> radius 1 material { transmission 1 ior 1.5 diffuse 0 } }\n"
+               "plane { normal <0, 1, 0> distance -1.5 material { color <1, 1, 1> } }\n");
+    const RunResult r = run_wsd(dir, "render c.wsd -q --stats --stats-json c.json");
+    REQUIRE(r.status == 0);
+    const std::string json = read_file(dir / "c.json");
+    CHECK(json_number(json, "photons_shot") == 5000);
+    CHECK(json_number(json, "photons_stored") > 0);
+    CHECK(json_number(json, "photon_lookups") > 0);
+    CHECK(json_number(json, "photons_visited") >= json_number(json, "photon_lookups"));
+    CHECK(json_number(json, "photon_map_seconds") > 0);
+    CHECK(json_number(json, "nonfinite_samples") == 0);
+    CHECK(r.out.find("Caustic photons:             5000 shot") != std::string::npos);
+}
