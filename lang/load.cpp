@@ -8,8 +8,8 @@
 #include "lang/interpreter.h"
 #include "lang/lower.h"
 #include "lang/parser.h"
-#include "render/memory_budget.h"
 #include "render/emitters.h"
+#include "render/memory_budget.h"
 
 namespace wsd::lang {
 

@@ -163,7 +163,7 @@ struct Settings {
     uint32_t seed = 0;
     int indirect_samples = 0;  // Monte Carlo paths a camera sample's diffuse hits gather; 0: off
     int indirect_bounces = 3;  // the most diffuse reflections a path makes
-    int caustic_photons = 0;  // 0: no caustics
+    int caustic_photons = 0;   // 0: no caustics
 };
 
 struct SceneSpec {

@@ -27,9 +27,7 @@ struct RayStats {
     uint64_t indirect_bounces = 0;  // their diffuse reflections (each path makes at least one)
     uint64_t indirect_rays = 0;     // rays they traced (diffuse and specular bounces)
     uint64_t emitter_samples = 0;   // points chosen on emissive surfaces (next-event estimation)
-    uint64_t rejected_rays = 0;    // NaN/Inf rays refused before traversal
-    uint64_t adaptive_pixels = 0;  // pixels that took the full supersampling grid
-    uint64_t photons_shot = 0;     // caustic photons shot, and stored on diffuse surfaces
+    uint64_t photons_shot = 0;      // caustic photons shot, and stored on diffuse surfaces
     uint64_t photons_stored = 0;
     uint64_t photon_lookups = 0;   // caustic estimates at shading points
     uint64_t photons_visited = 0;  // photons those estimates looked at (the gather cost)
