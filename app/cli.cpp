@@ -232,6 +232,15 @@ int run_cli(int argc, char** argv) {
     BenchArgs bench_args;
     CLI::App* bench = add_bench_command(app, bench_args);
 
+    PreviewArgs preview_args;
+    CLI::App* preview = app.add_subcommand("preview", "a live preview page that renders again on every save");
+    preview->add_option("SCENE", preview_args.scene, "scene file")->required();
+    preview->add_option("--port", preview_args.port, "TCP port (default 8642; 0 = any free one)")
+        ->check(integer_in(0, 65535));
+    preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)");
+    preview->add_option("--threads", preview_args.threads, "render threads; 0 = all cores")
+        ->check(integer_in(0, 4096));
+
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
     help->add_option("COMMAND", help_topic, "the command to explain");
@@ -262,6 +271,7 @@ int run_cli(int argc, char** argv) {
     if (*diff) return run_diff(diff_args);
     if (*merge) return run_merge(merge_args);
     if (*bench) return run_bench(bench_args);
+    if (*preview) return run_preview(preview_args);
     return exit_code::usage;
 }
 

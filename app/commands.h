@@ -73,4 +73,12 @@ struct BenchArgs {
 };
 int run_bench(const BenchArgs& args);
 
+struct PreviewArgs {
+    std::string scene;
+    std::string host = "127.0.0.1";
+    int port = 8642;  // 0: any free port
+    int threads = 0;
+};
+int run_preview(const PreviewArgs& args);
+
 }  // namespace wsd::app
