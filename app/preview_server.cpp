@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 
 #include "app/preview_page.h"
@@ -106,6 +107,10 @@ bool PreviewServer::bind(const std::string& host, int port, std::string& error) 
 
 void PreviewServer::start() {
     thread_ = std::thread([this] { impl_->server.listen_after_bind(); });
+    // stop() only reaches a server that is running: wait for it (the socket already listens, so
+    // no connection is lost meanwhile).
+    for (int i = 0; i < 1000 && !impl_->server.is_running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
 }
 
 void PreviewServer::stop() {
