@@ -170,7 +170,26 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         diags.error({}, std::string("the scene could not be loaded: ") + e.what());
     }
     const bool ok = loaded && !diags.has_errors();
-    publish_files(named_files(scene_, sources, ok ? &*loaded : nullptr), !ok);
+    if (ok) {
+        publish_files(named_files(scene_, sources, &*loaded), false);
+    } else {
+        // When only the build failed (a missing or broken texture), the description without the
+        // build still names the files to watch for the fix.
+        lang::LoadOptions unbuilt;
+        unbuilt.build = false;
+        lang::SourceManager unbuilt_sources;
+        lang::Diagnostics unbuilt_diags;
+        std::optional<lang::LoadedScene> described;
+        try {
+            described = lang::load_scene(scene_, text, unbuilt_sources, unbuilt_diags, unbuilt);
+        } catch (const std::exception&) {
+            described.reset();
+        }
+        if (described && !unbuilt_diags.has_errors())
+            publish_files(named_files(scene_, unbuilt_sources, &*described), true);
+        else
+            publish_files(named_files(scene_, sources, nullptr), true);
+    }
     if (!ok) {
         std::string message = lang::format_diagnostics(diags, sources);
         if (message.empty()) message = scene_ + ": the scene could not be loaded\n";

@@ -164,3 +164,25 @@ TEST_CASE("the preview render loop publishes stages, diagnostics and the last go
     renderer.stop();
     loop.join();
 }
+
+TEST_CASE("a preview of a scene whose texture is missing watches the texture", "[preview]") {
+    TempDir dir;
+    const std::string scene = dir / "s.wsd";
+    std::string text = kScene;
+    text.replace(text.find("color <1, 0, 0>"), 15, "texture image \"tex/t.png\"");
+    write_file(scene, text);
+    wsd::app::PreviewState state;
+    wsd::app::PreviewRenderer renderer(state, scene, 1);
+    std::thread loop([&] { renderer.run(); });
+    renderer.request();
+    const wsd::app::PreviewSnapshot s =
+        wait_until(state, [](const auto& x) { return x.generation == 1 && x.phase == "error"; });
+    CHECK(s.diagnostics.find("tex/t.png") != std::string::npos);
+    std::vector<std::string> files;
+    bool whole = false;
+    CHECK(renderer.take_watch_list(files, whole));
+    CHECK(files == std::vector<std::string>{scene, dir / "tex/t.png"});
+    CHECK(whole);
+    renderer.stop();
+    loop.join();
+}
