@@ -26,7 +26,7 @@ constexpr std::string_view kPage = R"WSDPAGE(<!DOCTYPE html>
   #view.coarse #image { image-rendering: auto; }
   #diagnostics { position: absolute; left: 0; right: 0; top: 0; margin: 0; padding: 10px;
                  max-height: 100%; overflow: auto; background: rgba(40, 0, 0, 0.88); color: #fdd;
-                 font: 13px ui-monospace, monospace; white-space: pre-wrap; }
+                 font: 13px ui-monospace, monospace; white-space: pre; }
   #diagnostics[hidden] { display: none; }
   #view.stale #image { opacity: 0.45; }
   table { border-collapse: collapse; font-size: 13px; }
@@ -86,6 +86,7 @@ function showStats(stats) {
     if (!(key in stats)) continue;
     let value = stats[key];
     if (key === "peak_memory_bytes") value = (value / 1048576).toFixed(1);
+    else if (key.endsWith("_seconds") || key === "mrays_per_second") value = Number(value).toPrecision(3);
     else if (typeof value === "number") value = value.toLocaleString("en-US");
     const row = table.insertRow();
     row.insertCell().textContent = label;
