@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-packages=(cmake g++ make python3 libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev openexr)
+packages=(cmake g++ make python3 libglm-dev libcli11-dev libstb-dev nlohmann-json3-dev catch2 libopenexr-dev
+          openexr libcpp-httplib-dev pkgconf)
 [[ -n "${WSD_EXTRA_PACKAGES:-}" ]] && read -r -a extra <<<"$WSD_EXTRA_PACKAGES" && packages+=("${extra[@]}")
 missing=()
 for p in "${packages[@]}"; do

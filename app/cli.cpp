@@ -283,6 +283,14 @@ int run_cli(int argc, char** argv) {
     fmt->add_flag("--check", fmt_args.check, "change nothing; name the files that are not canonical")
         ->excludes(fmt_in_place);
     CLI::App* lsp = app.add_subcommand("lsp", "a language server on stdin/stdout (Language Server Protocol)");
+    PreviewArgs preview_args;
+    CLI::App* preview = app.add_subcommand("preview", "a live preview page that renders again on every save");
+    preview->add_option("SCENE", preview_args.scene, "scene file")->required();
+    preview->add_option("--port", preview_args.port, "TCP port (default 8642; 0 = any free one)")
+        ->check(integer_in(0, 65535));
+    preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)");
+    preview->add_option("--threads", preview_args.threads, "render threads; 0 = all cores")
+        ->check(integer_in(0, 4096));
 
     std::string help_topic;
     CLI::App* help = app.add_subcommand("help", "print the help of wsd or of one command");
@@ -316,6 +324,7 @@ int run_cli(int argc, char** argv) {
     if (*merge) return run_merge(merge_args);
     if (*bench) return run_bench(bench_args);
     if (*lsp) return run_lsp();
+    if (*preview) return run_preview(preview_args);
     return exit_code::usage;
 }
 

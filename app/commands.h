@@ -86,4 +86,12 @@ int run_bench(const BenchArgs& args);
 // A language server on stdin/stdout; 0 after `shutdown` and `exit`, 1 when input ends without them.
 int run_lsp();
 
+struct PreviewArgs {
+    std::string scene;
+    std::string host = "127.0.0.1";
+    int port = 8642;  // 0: any free port
+    int threads = 0;
+};
+int run_preview(const PreviewArgs& args);
+
 }  // namespace wsd::app

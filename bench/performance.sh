@@ -495,8 +495,24 @@ lsp_table() {
        "$(row cornell.wsd)" "$(row mesh.wsd)"
 }
 
+# ---------------------------------------------------------------- live preview
+preview_table() {
+  section "Live preview: from saving a file to new pixels"
+  local edits=$( ((quick)) && echo 3 || echo 9)
+  log "bench/preview_latency.sh $build/wsd examples/cornell.wsd $edits"
+  bench/preview_latency.sh "$build/wsd" examples/cornell.wsd "$edits" >"$tmp/preview.txt"
+  para "\`bench/preview_latency.sh $build/wsd examples/cornell.wsd $edits\`: \`wsd preview\` on a copy of the Cornell box;" \
+       "$edits saves of the scene file (a colour changed), each while the previous render still refines; the time from" \
+       "the write to the save being noticed (the \`loading\` event) and to the first image of the new render" \
+       "(the coarse first stage: reload, build, render, PNG) fetched by a client of the page's event stream." \
+       "" "| figure | measured |" "|---|---:|" \
+       "| save noticed, median | $(awk '/^median:/ { print $3; exit }' "$tmp/preview.txt") s |" \
+       "| first new pixels, median (range) | $(awk '/^median:/ { print $8, $9, $10, $11; exit }' "$tmp/preview.txt" | tr -d ')' | sed 's/ s (range / s (/; s/$/)/') |" \
+       "| the image first shown | stage $(awk '/^edit 1:/ { print $11, $12; exit }' "$tmp/preview.txt" | tr -d ',' | sed 's/ /, /') pixels |"
+}
+
 # ---------------------------------------------------------------- the page
-sections=(cornell caustics adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp)
+sections=(cornell caustics adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp preview)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done

@@ -1,0 +1,121 @@
+// The preview's routes on a cpp-httplib server. Each event stream holds one of the server's
+// threads; it sends a snapshot whenever the state's version changes and a comment every few
+// seconds otherwise (so a closed page is noticed), and ends when the state stops.
+#include "app/preview_server.h"
+
+#include <httplib.h>
+#include <sys/socket.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "app/preview_page.h"
+
+namespace wsd::app {
+
+namespace {
+
+constexpr int kKeepAliveMs = 2000;
+constexpr size_t kServerThreads = 16;  // event streams hold one each
+
+}  // namespace
+
+struct PreviewServer::Impl {
+    explicit Impl(const PreviewState& s) : state(s) {}
+    const PreviewState& state;
+    httplib::Server server;
+};
+
+PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique<Impl>(state)) {
+    httplib::Server& server = impl_->server;
+    const PreviewState& st = state;
+    // cpp-httplib's default sets SO_REUSEPORT, with which a second server would share a port in
+    // use instead of being refused it; SO_REUSEADDR alone still allows a quick restart.
+    server.set_socket_options([](socket_t sock) {
+        int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    });
+    server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
+    server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+        const std::string_view page = preview_page_html();
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(page.data(), page.size(), "text/html; charset=utf-8");
+    });
+    server.Get("/status", [&st](const httplib::Request&, httplib::Response& res) {
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(snapshot_json(st.snapshot()), "application/json");
+    });
+    server.Get("/image", [&st](const httplib::Request&, httplib::Response& res) {
+        res.set_header("Cache-Control", "no-store");
+        std::string png = st.image_png();
+        if (png.empty()) {
+            res.status = 404;
+            res.set_content("no image yet\n", "text/plain");
+            return;
+        }
+        res.set_content(png, "image/png");
+    });
+    server.Get("/events", [&st](const httplib::Request&, httplib::Response& res) {
+        res.set_header("Cache-Control", "no-store");
+        auto seen = std::make_shared<uint64_t>(~uint64_t(0));
+        res.set_chunked_content_provider("text/event-stream", [&st, seen](size_t, httplib::DataSink& sink) {
+            bool stopping = false;
+            const PreviewSnapshot s = st.wait_change(*seen, kKeepAliveMs, stopping);
+            if (stopping) {
+                sink.done();
+                return true;
+            }
+            std::string message;
+            if (s.version != *seen) {
+                *seen = s.version;
+                message = "data: " + snapshot_json(s) + "\n\n";
+            } else {
+                message = ": keep-alive\n\n";
+            }
+            return sink.write(message.data(), message.size());
+        });
+    });
+}
+
+PreviewServer::~PreviewServer() {
+    stop();
+}
+
+bool PreviewServer::bind(const std::string& host, int port, std::string& error) {
+    httplib::Server& server = impl_->server;
+    errno = 0;
+    bool ok = false;
+    if (port == 0) {
+        port_ = server.bind_to_any_port(host);
+        ok = port_ > 0;
+    } else {
+        ok = server.bind_to_port(host, port);
+        port_ = port;
+    }
+    if (ok) return true;
+    const int err = errno;
+    error = "cannot listen on " + host + ":" + std::to_string(port);
+    if (err == EADDRINUSE)
+        error += ": the port is in use (choose another with --port)";
+    else if (err != 0)
+        error += std::string(": ") + std::strerror(err);
+    else
+        error += " (is the host an address of this machine, and the port free?)";
+    return false;
+}
+
+void PreviewServer::start() {
+    thread_ = std::thread([this] { impl_->server.listen_after_bind(); });
+    // stop() only reaches a server that is running: wait for it (the socket already listens, so
+    // no connection is lost meanwhile).
+    for (int i = 0; i < 1000 && !impl_->server.is_running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+}
+
+void PreviewServer::stop() {
+    impl_->server.stop();
+    if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace wsd::app
