@@ -20,8 +20,9 @@ struct SceneOverrides {
     std::optional<int> light_samples;  // every area light becomes an N×N grid
     std::optional<uint32_t> seed;
     std::optional<bool> adaptive_supersampling;
-    std::optional<bool> adaptive_lights;  // every area light's own `adaptive` flag
-    std::optional<double> bailout;        // adaptive depth: settings.bailout
+    std::optional<bool> adaptive_lights;    // every area light's own `adaptive` flag
+    std::optional<double> bailout;          // adaptive depth: settings.bailout
+    std::optional<bool> exact_area_lights;  // settings.exact_area_lights
 
     void apply(render::SceneSpec& spec) const;
 };

@@ -102,8 +102,9 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
     CHECK(values["max_depth"] == std::vector<std::string>{"0", "1", "2"});
     CHECK(values["adaptive_aa"] == std::vector<std::string>{"off", "on"});
     CHECK(values["adaptive_lights"] == std::vector<std::string>{"off", "on"});
+    CHECK(values["exact_area_lights"] == std::vector<std::string>{"off", "on"});
     CHECK(values["bailout"] == std::vector<std::string>{"0", "1/512", "1/8"});
-    CHECK(values.size() == 6);
+    CHECK(values.size() == 7);
     // A higher bailout traces fewer secondary rays, never more.
     CHECK(secondary["bailout=0"] >= secondary["bailout=1/512"]);
     CHECK(secondary["bailout=1/512"] >= secondary["bailout=1/8"]);
@@ -119,9 +120,9 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
 
     const std::string svg = read_file(dir / "out/bench.svg");
     CHECK(balanced(svg));
-    CHECK(count_tags(svg, "path") == 6);
-    for (const char* knob :
-         {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights", "bailout"})
+    CHECK(count_tags(svg, "path") == 7);
+    for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights",
+                             "exact_area_lights", "bailout"})
         CHECK(svg.find(std::string(">") + knob + "</text>") != std::string::npos);  // legend
     CHECK(svg.find("Pareto") != std::string::npos);
 }
