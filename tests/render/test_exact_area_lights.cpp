@@ -88,3 +88,22 @@ TEST_CASE("exact_area_lights off leaves the cell sum unchanged", "[light][closed
     CHECK(a.film.rgb == c.film.rgb);
     CHECK(a.film.rgb != b.film.rgb);
 }
+
+TEST_CASE("exact_area_lights: the specular term is still the cells' sum", "[light][closedform]") {
+    // specular(on) − specular(off) is the same highlight whichever way the diffuse term is found.
+    auto render_with = [](bool exact, double specular) {
+        auto spec = floor_scene(4, exact);
+        spec.materials[0].specular = specular;
+        spec.materials[0].shininess = 20;
+        return render_spec(spec).film.rgb;
+    };
+    const auto exact_s = render_with(true, 0.5), exact_d = render_with(true, 0);
+    const auto cells_s = render_with(false, 0.5), cells_d = render_with(false, 0);
+    double highlight = 0;
+    for (size_t i = 0; i < exact_s.size(); ++i) {
+        const double a = double(exact_s[i]) - double(exact_d[i]), b = double(cells_s[i]) - double(cells_d[i]);
+        highlight = std::max(highlight, b);
+        CHECK(std::abs(a - b) < 1e-6);
+    }
+    CHECK(highlight > 0.05);
+}
