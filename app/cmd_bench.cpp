@@ -145,6 +145,9 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
     if (facts.area_lights)
         for (const bool on : {false, true})
             add("adaptive_lights", on ? "on" : "off", [&](SceneOverrides& o) { o.adaptive_lights = on; });
+    if (facts.area_lights)
+        for (const bool on : {false, true})
+            add("exact_area_lights", on ? "on" : "off", [&](SceneOverrides& o) { o.exact_area_lights = on; });
     // Adaptive depth: 0 traces every reflected and refracted ray; 1/512 is the default.
     const std::vector<std::pair<std::string, double>> bailouts =
         quick ? std::vector<std::pair<std::string, double>>{{"0", 0.0}, {"1/512", 1.0 / 512}, {"1/8", 0.125}}
@@ -242,6 +245,7 @@ SceneOverrides reference_overrides(const BenchArgs& args, const SceneFacts& fact
     reference.max_depth = args.reference_depth >= 0 ? args.reference_depth : std::max(facts.max_depth, 10);
     reference.adaptive_supersampling = false;
     reference.adaptive_lights = false;
+    reference.exact_area_lights = false;
     reference.bailout = 0.0;
     // Indirect light: the scene's paths a camera sample (the reference's many camera samples
     // multiply them), and at least 8 bounces.

@@ -22,6 +22,7 @@ void SceneOverrides::apply(render::SceneSpec& spec) const {
     if (indirect_samples) s.indirect_samples = *indirect_samples;
     if (indirect_bounces) s.indirect_bounces = *indirect_bounces;
     if (caustic_photons) s.caustic_photons = *caustic_photons;
+    if (exact_area_lights) s.exact_area_lights = *exact_area_lights;
     for (render::LightSpec& light : spec.lights) {
         if (light.kind != render::LightKind::Area) continue;
         if (light_samples) light.samples_u = light.samples_v = *light_samples;
@@ -119,7 +120,8 @@ std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_li
         << ";adaptive=" << s.adaptive_supersampling << ";aa_threshold=" << s.aa_threshold
         << ";bailout=" << s.bailout << ";max_depth=" << s.max_depth << ";ambient=" << s.ambient
         << ";background=" << s.background.r << "," << s.background.g << "," << s.background.b
-        << ";adaptive_lights=" << adaptive_lights << ";lights=";
+        << ";adaptive_lights=" << adaptive_lights << (s.exact_area_lights ? ";exact_area_lights=1" : "")
+        << ";lights=";
     for (const render::LightSpec& light : spec.lights)
         out << light.samples_u << "x" << light.samples_v << (light.adaptive ? "a" : "") << ",";
     if (s.indirect_samples > 0) out << ";indirect=" << s.indirect_samples << "x" << s.indirect_bounces;

@@ -23,7 +23,8 @@ struct SceneOverrides {
     std::optional<bool> adaptive_lights;  // every area light's own `adaptive` flag
     std::optional<double> bailout;        // adaptive depth: settings.bailout
     std::optional<int> indirect_samples, indirect_bounces;
-    std::optional<int> caustic_photons;  // settings.caustic_photons
+    std::optional<int> caustic_photons;     // settings.caustic_photons
+    std::optional<bool> exact_area_lights;  // settings.exact_area_lights
 
     void apply(render::SceneSpec& spec) const;
 };

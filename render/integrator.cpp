@@ -19,6 +19,7 @@
 #include "render/light_terms.h"
 #include "render/media.h"
 #include "render/photon_map.h"
+#include "render/rect_light_integral.h"
 #include "render/sampling.h"
 #include "render/scene.h"
 #include "render/shaft.h"
@@ -78,7 +79,8 @@ public:
           bailout_(scene.settings().bailout),
           background_(scene.settings().background),
           indirect_(scene, stats, *this),
-          caustics_(scene.caustics()) {
+          caustics_(scene.caustics()),
+          exact_area_(scene.settings().exact_area_lights) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
         cells_.resize(most);
@@ -251,7 +253,10 @@ private:
                 }
             } else {
                 use_shaft_ = light.count() >= kShaftMinSamples && gather_shaft(sh, light);
-                if (kAdaptive && (light.adaptive || force_adaptive_) && light.count() > 1)
+                if (exact_area_ && use_shaft_ &&
+                    exact_area(sh, light, light_key(key, uint32_t(li)), sd, ss)) {
+                    // the closed form and the specular cells
+                } else if (kAdaptive && (light.adaptive || force_adaptive_) && light.count() > 1)
                     adaptive_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
                 else
                     full_area(sh, light, light_key(key, uint32_t(li)), sd, ss);
@@ -288,6 +293,35 @@ private:
         const uint32_t cell = uint32_t(j * light.nu + i);
         const Uniform2 xi = cell_offset(light, lkey, cell);
         return light.cell_point(i, j, xi.u, xi.v);
+    }
+
+    // settings.exact_area_lights: where the shaft proves every shadow ray reaches the light and
+    // the whole light lies above the tangent plane (and on the viewer's side of an opaque
+    // surface), the diffuse sum is count × the exact average of N·L over the light, the limit of
+    // the jittered cell sum; the specular term is still summed over the cells. False elsewhere.
+    bool exact_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
+        if (shaft_.blocked || shaft_.count != 0 || (kTransmissive && shaft_.transmissive)) return false;
+        const Vec3 u = light.du * double(light.nu), v = light.dv * double(light.nv);
+        for (const Vec3& q : {light.corner, light.corner + u, light.corner + v, light.corner + u + v}) {
+            const Vec3 d = q - sh.p;
+            if (!(glm::dot(sh.N, d) >= 0) || (sh.opaque && !(glm::dot(sh.ng_v, d) > 0))) return false;
+        }
+        const double avg = rect_light_average_cosine(sh.p, sh.N, light.corner, u, v);
+        if (!std::isfinite(avg)) return false;
+        if (sh.diffuse) sd += Vis(avg * double(light.count()));
+        if (sh.specular > 0) {
+            const int n = cells_.prepare(sh, light, lkey);
+            uint64_t rays = 0;
+            for (int k = 0; k < n; ++k) {
+                const Term t = cells_.term(sh, k);
+                if (!(t.sp > 0)) continue;
+                ++rays;
+                ss += Vis(t.sp);
+            }
+            stats_.shadow_rays += rays;
+            stats_.shaft_answered_rays += rays;
+        }
+        return true;
     }
 
     void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
@@ -486,6 +520,7 @@ private:
     Color background_;
     IndirectGather<WhittedTracer> indirect_;  // used when kLight == 2
     const PhotonMap* caustics_;               // null without caustics
+    bool exact_area_;                         // settings.exact_area_lights
     LightCells cells_;                        // area lights: the current point's cells and their terms
     std::vector<Vis> vis_;                    // adaptive lights: per-cell visibility of the current point
     std::vector<uint8_t> state_;              // adaptive lights: kUnknown, kFilled or kProbed per cell

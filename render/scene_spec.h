@@ -155,6 +155,7 @@ struct Settings {
     int width = 640, height = 480;
     int supersamples = 1;
     bool adaptive_supersampling = false;
+    bool exact_area_lights = false;  // closed-form diffuse term where a point sees a light whole
     double aa_threshold = 0.05;
     double bailout = 1.0 / 512.0;
     int max_depth = 8;

@@ -115,6 +115,7 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
     CHECK(values["max_depth"] == std::vector<std::string>{"0", "1", "2"});
     CHECK(values["adaptive_aa"] == std::vector<std::string>{"off", "on"});
     CHECK(values["adaptive_lights"] == std::vector<std::string>{"off", "on"});
+    CHECK(values["exact_area_lights"] == std::vector<std::string>{"off", "on"});
     CHECK(values["bailout"] == std::vector<std::string>{"0", "1/512", "1/8"});
     CHECK(values.size() == 7);
     // A higher bailout traces fewer secondary rays, never more.
@@ -132,9 +133,9 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
 
     const std::string svg = read_file(dir / "out/bench.svg");
     CHECK(balanced(svg));
-    CHECK(count_tags(svg, "path") == 7);
+    CHECK(count_tags(svg, "path") == 8);
     for (const char* knob : {"supersamples", "light_samples", "max_depth", "adaptive_aa", "adaptive_lights",
-                             "bailout", "target_error"})
+                             "exact_area_lights", "bailout", "target_error"})
         CHECK(svg.find(std::string(">") + knob + "</text>") != std::string::npos);  // legend
     CHECK(svg.find("Pareto") != std::string::npos);
 }

@@ -55,7 +55,8 @@ TEST_CASE("a scene bigger than the memory it may use is refused before it is bui
     fs::copy_file(fs::path(WSD_SOURCE_DIR) / "examples/models/torus.obj", dir.path() / "torus.obj");
     write_file(dir / "s.wsd",
                "settings { width 40  height 30 }\ncamera { position <0, 2, -4>  look_at <0, 0, 0> }\n"
-               "light point { position <3, 8, -5> }\nlet default_material = material { }\nsphere { center <0, 0, 0>  radius 0.1 }\n"
+               "light point { position <3, 8, -5> }\nlet default_material = material { }\nsphere { center "
+               "<0, 0, 0>  radius 0.1 }\n"
                "mesh { file \"torus.obj\" }\n");
     const RunResult refused = run_wsd(dir, "render s.wsd -o s.png", "WSD_MAX_MEMORY=100K");
     CHECK(refused.status != 0);
