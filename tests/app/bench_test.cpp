@@ -117,7 +117,7 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
     CHECK(values["adaptive_lights"] == std::vector<std::string>{"off", "on"});
     CHECK(values["exact_area_lights"] == std::vector<std::string>{"off", "on"});
     CHECK(values["bailout"] == std::vector<std::string>{"0", "1/512", "1/8"});
-    CHECK(values.size() == 7);
+    CHECK(values.size() == 8);
     // A higher bailout traces fewer secondary rays, never more.
     CHECK(secondary["bailout=0"] >= secondary["bailout=1/512"]);
     CHECK(secondary["bailout=1/512"] >= secondary["bailout=1/8"]);
