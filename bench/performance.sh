@@ -553,6 +553,11 @@ def split(text):
     return parts[0], [(p.split("\n", 1)[0], p) for p in parts[1:]]
 head, old = split(open(sys.argv[1]).read())
 _, new = split(open(sys.argv[2]).read())
+note = ("Sections that begin \"Measured on its own\" were measured later, by `--only`, each at the"
+        " date and load it states; the rest by the run above.\n")
+if note not in head:
+    head = head.rstrip("\n") + "\n\n" + note
+head = head.rstrip("\n") + "\n\n"
 fresh = dict(new)
 out = head + "".join(fresh.pop(title, body) for title, body in old)
 out += "".join(body for title, body in new if title in fresh)
