@@ -51,7 +51,7 @@ quality_of() {  # camera rays for the gallery picture NAME
   case $1 in
     glass|bumps|mesh|csg) echo "--supersamples 64" ;;  # checker floors to the horizon
     soft-shadows-2|supersampling|supersampling-1) ;;  # set by the scene or below
-    cornell-indirect|emissive-room) echo "--supersamples 4" ;;  # × the scene's indirect paths each
+    cornell-indirect|emissive-room) echo "--supersamples 16" ;;  # × the scene's indirect paths each: 256 and 512 paths a pixel
     *) echo "--supersamples 16" ;;
   esac
 }
