@@ -400,32 +400,4 @@ SceneBuilder::Expansion SceneBuilder::expansion(const ObjectPtr& value) {
     return objects_->expansion(value);
 }
 
-const char* shape_word(render::ShapeKind kind) {
-    switch (kind) {
-        case render::ShapeKind::Sphere:
-            return "sphere";
-        case render::ShapeKind::Box:
-            return "box";
-        case render::ShapeKind::Triangle:
-            return "triangle";
-        case render::ShapeKind::Plane:
-            return "plane";
-        case render::ShapeKind::Mesh:
-            return "mesh";
-        case render::ShapeKind::Cylinder:
-            return "cylinder";
-        case render::ShapeKind::Cone:
-            return "cone";
-        case render::ShapeKind::Torus:
-            return "torus";
-        case render::ShapeKind::Disc:
-            return "disc";
-        case render::ShapeKind::Csg:
-            return "csg";
-        case render::ShapeKind::Instance:
-            return "object";
-    }
-    return "object";
-}
-
 }  // namespace wsd::lang

@@ -53,7 +53,7 @@ struct ObjectValue {
     bool is_mesh() const { return kind == ObjectKind::Leaf && leaf->shape.kind == render::ShapeKind::Mesh; }
 };
 
-// The keyword a leaf is written with ("sphere", "mesh", ...).
-const char* shape_word(render::ShapeKind kind);
+// The keyword a leaf is written with ("sphere", "mesh", ...): render::shape_word.
+using render::shape_word;
 
 }  // namespace wsd::lang

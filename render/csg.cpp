@@ -13,34 +13,6 @@ namespace wsd::render {
 
 namespace {
 
-const char* kind_word(ShapeKind k) {
-    switch (k) {
-        case ShapeKind::Sphere:
-            return "sphere";
-        case ShapeKind::Box:
-            return "box";
-        case ShapeKind::Triangle:
-            return "triangle";
-        case ShapeKind::Plane:
-            return "plane";
-        case ShapeKind::Mesh:
-            return "mesh";
-        case ShapeKind::Cylinder:
-            return "cylinder";
-        case ShapeKind::Cone:
-            return "cone";
-        case ShapeKind::Torus:
-            return "torus";
-        case ShapeKind::Disc:
-            return "disc";
-        case ShapeKind::Csg:
-            return "CSG";
-        case ShapeKind::Instance:
-            return "object";
-    }
-    return "shape";
-}
-
 // An axis-aligned box that may be unbounded (a half-space) or empty (an empty intersection).
 struct Extent {
     Vec3 lo{std::numeric_limits<double>::infinity()}, hi{-std::numeric_limits<double>::infinity()};
@@ -263,7 +235,7 @@ struct SolidBuilder {
             case ShapeKind::Torus:
                 return quadric(s, m, mem, where);
             default:
-                return fail(where, std::string("'") + kind_word(s.kind) +
+                return fail(where, std::string("'") + shape_word(s.kind) +
                                        "' is not a solid; CSG needs closed shapes"),
                        false;
         }
@@ -273,8 +245,8 @@ struct SolidBuilder {
 // A closed cylinder or cone, or a torus: the member's frame becomes the shape's canonical one.
 bool SolidBuilder::quadric(const ShapeSpec& s, const Mat4& m, CsgMember& mem, const std::string& where) {
     if (s.open && s.kind != ShapeKind::Torus)
-        return fail(where,
-                    std::string("an open ") + kind_word(s.kind) + " is not a solid; CSG needs closed shapes"),
+        return fail(where, std::string("an open ") + shape_word(s.kind) +
+                               " is not a solid; CSG needs closed shapes"),
                false;
     Mat4 frame(1.0);
     if (auto problem = make_quadric(s, mem.quadric, frame)) return fail(where, *problem), false;

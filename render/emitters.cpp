@@ -47,23 +47,6 @@ void frame(const Vec3& n, Vec3& u, Vec3& v) {
     v = glm::cross(n, u);
 }
 
-const char* kind_word(ShapeKind k) {
-    switch (k) {
-        case ShapeKind::Sphere:
-            return "sphere";
-        case ShapeKind::Box:
-            return "box";
-        case ShapeKind::Triangle:
-            return "triangle";
-        case ShapeKind::Mesh:
-            return "mesh";
-        case ShapeKind::Disc:
-            return "disc";
-        default:
-            return "shape";
-    }
-}
-
 // Index of the first cdf entry above u (u ∈ [0, 1)), within [first, first + n).
 size_t pick(const std::vector<double>& cdf, size_t first, size_t n, double u) {
     const auto begin = cdf.begin() + std::ptrdiff_t(first);
@@ -165,7 +148,7 @@ Emitters Emitters::build(const SceneSpec& spec, std::vector<SpecError>& errors) 
         if (!(sh.area > 0) || !std::isfinite(sh.area)) {
             errors.push_back(
                 {SpecItem::Shape, i, s.tag,
-                 std::string("an emissive ") + kind_word(s.kind) +
+                 std::string("an emissive ") + shape_word(s.kind) +
                      " must have a finite, non-zero area to be sampled as a light (its area is " +
                      (std::isfinite(sh.area) ? "0" : "not finite") + ")",
                  -1, "material"});

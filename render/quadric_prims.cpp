@@ -13,19 +13,6 @@ namespace wsd::render {
 
 namespace {
 
-std::string kind_name(ShapeKind k) {
-    switch (k) {
-        case ShapeKind::Cylinder:
-            return "cylinder";
-        case ShapeKind::Cone:
-            return "cone";
-        case ShapeKind::Torus:
-            return "torus";
-        default:
-            return "disc";
-    }
-}
-
 bool positive(double x) {
     return std::isfinite(x) && x > 0;
 }
@@ -38,7 +25,7 @@ void set_axes(QuadricPrim& q, const Vec3& axis) {
 }
 
 std::optional<std::string> axial(const ShapeSpec& s, QuadricPrim& q) {
-    const std::string name = kind_name(s.kind);
+    const std::string name = shape_word(s.kind);
     if (!is_finite(s.base) || !is_finite(s.cap)) return name + " base and cap must be finite";
     const Vec3 axis = s.cap - s.base;
     q.h = glm::length(axis);
@@ -258,7 +245,7 @@ std::optional<Bounds3f> build_quadric(const OtherBuild& b, const ShapeSpec& s, c
         q.xform = b.xform;
     } else {
         if (auto msg = make_transform(s.object_to_world * frame, composed)) {
-            b.error(kind_name(s.kind) + " " + *msg);
+            b.error(std::string(shape_word(s.kind)) + " " + *msg);
             return std::nullopt;
         }
         q.xform = static_cast<uint32_t>(b.g.xforms.size());
@@ -277,7 +264,7 @@ std::optional<Bounds3f> build_quadric(const OtherBuild& b, const ShapeSpec& s, c
     const Vec3 pad = gamma(8) * (abs3(lo) + abs3(hi) + (hi - lo));
     const Bounds3f bounds = Bounds3f::around(lo - pad, hi + pad);
     if (!is_finite(bounds.lo) || !is_finite(bounds.hi)) {
-        b.error(kind_name(s.kind) + " is out of range after its transform");
+        b.error(std::string(shape_word(s.kind)) + " is out of range after its transform");
         return std::nullopt;
     }
     b.g.quadrics.push_back(q);

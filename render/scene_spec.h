@@ -57,6 +57,35 @@ struct MaterialSpec {
 enum class ShapeKind { Sphere, Box, Triangle, Plane, Mesh, Cylinder, Cone, Torus, Disc, Csg, Instance };
 enum class CsgOp { Union, Intersection, Difference };
 
+// The word a scene writes for a shape kind ("sphere", "torus", "object" for an instance), for messages.
+constexpr const char* shape_word(ShapeKind k) {
+    switch (k) {
+        case ShapeKind::Sphere:
+            return "sphere";
+        case ShapeKind::Box:
+            return "box";
+        case ShapeKind::Triangle:
+            return "triangle";
+        case ShapeKind::Plane:
+            return "plane";
+        case ShapeKind::Mesh:
+            return "mesh";
+        case ShapeKind::Cylinder:
+            return "cylinder";
+        case ShapeKind::Cone:
+            return "cone";
+        case ShapeKind::Torus:
+            return "torus";
+        case ShapeKind::Disc:
+            return "disc";
+        case ShapeKind::Csg:
+            return "CSG";
+        case ShapeKind::Instance:
+            return "object";
+    }
+    return "shape";
+}
+
 // A shape inside a prototype or a CSG whose material is given by what contains it: the CSG's
 // material, else the instance's (ShapeSpec::material of the Instance shape).
 inline constexpr uint32_t kInheritMaterial = 0xffffffffu;
