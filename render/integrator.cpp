@@ -22,6 +22,7 @@
 #include "render/rect_light_integral.h"
 #include "render/sampling.h"
 #include "render/scene.h"
+#include "render/sequence.h"
 #include "render/shaft.h"
 
 namespace wsd::render {
@@ -56,9 +57,11 @@ constexpr int kMaxShadowCrossings = 1024;
 
 struct Path {
     uint64_t key;
-    int depth;    // reflections and refractions so far
-    Vec3 weight;  // product of the coefficients along the path
-    int medium;   // material index of the transmissive object the ray travels in, or −1
+    int depth;           // reflections and refractions so far
+    Vec3 weight;         // product of the coefficients along the path
+    int medium;          // material index of the transmissive object the ray travels in, or −1
+    uint64_t seq = 0;    // with sampled lights: the pixel half's sequence key for this branch
+    uint32_t index = 0;  // and the sample's index in it
 };
 
 // kLight: 0 = no emission anywhere; 1 = emission, seen only; 2 = indirect light (indirect.h).
@@ -80,7 +83,8 @@ public:
           background_(scene.settings().background),
           indirect_(scene, stats, *this),
           caustics_(scene.caustics()),
-          exact_area_(scene.settings().exact_area_lights) {
+          exact_area_(scene.settings().exact_area_lights),
+          sampled_lights_(options.sampled_lights) {
         size_t most = 0;
         for (const Light& l : lights_) most = std::max(most, size_t(l.count()));
         cells_.resize(most);
@@ -104,6 +108,17 @@ public:
         for (int k = 0; k < n; ++k) out[k] = trace_hit(rays[k], hits[k], Path{key[k], 0, Vec3(1), -1});
     }
 
+    void sequence_samples(const double* px, const double* py, const uint64_t* key, const uint64_t* seq,
+                          const uint32_t* index, int n, Color* out) override {
+        Ray rays[Geometry::kMaxPacket];
+        std::optional<HitRecord> hits[Geometry::kMaxPacket];
+        for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
+        stats_.camera_rays += uint64_t(n);
+        geom_.intersect_packet(rays, n, kInfinity, stats_, hits);
+        for (int k = 0; k < n; ++k)
+            out[k] = trace_hit(rays[k], hits[k], Path{key[k], 0, Vec3(1), -1, seq[k], index[k]});
+    }
+
     Color trace_ray(const Ray& ray, uint64_t key) override {
         ++stats_.camera_rays;
         return trace(ray, Path{key, 0, Vec3(1), -1});
@@ -112,7 +127,7 @@ public:
     // The direct term at a hit that an indirect path reaches (V: towards where the path came from).
     Color lights(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V, const Color& c,
                  double t, uint64_t key) {
-        return direct(s, m, N, V, c, t, key);
+        return direct(s, m, N, V, c, t, key, nullptr);
     }
 
 private:
@@ -158,7 +173,7 @@ private:
 
         Color colour = (1.0 - t) * m.ambient * c;
         if constexpr (kLight > 0) colour += m.emission;
-        colour += direct(s, m, N, V, c, t, path.key);
+        colour += direct(s, m, N, V, c, t, path.key, sampled_lights_ ? &path : nullptr);
         if constexpr (kLight == 2) {
             const Color rho = (1.0 - t) * m.diffuse * c;
             if (max_component(rho) > 0) colour += rho * indirect_.gather(s, N, path.key, medium);
@@ -197,7 +212,8 @@ private:
             if (max_component(w) >= bailout_) {
                 ++stats_.reflection_rays;
                 const Ray rr{Geometry::offset_origin(s, refl_dir), refl_dir};
-                colour += w_refl * trace(rr, Path{branch_key(path.key, 1), path.depth + 1, w, medium});
+                colour += w_refl * trace(rr, Path{branch_key(path.key, 1), path.depth + 1, w, medium,
+                                                  branch_key(path.seq, 1), path.index});
             }
         }
         if constexpr (kTransmissive) {
@@ -210,7 +226,8 @@ private:
                     const Ray tr{Geometry::offset_origin(s, refr_dir), refr_dir};
                     // Media do not nest: entering puts the ray inside this object, leaving outside.
                     const int inside = front ? int(s.material) : -1;
-                    colour += coef * trace(tr, Path{branch_key(path.key, 2), path.depth + 1, w, inside});
+                    colour += coef * trace(tr, Path{branch_key(path.key, 2), path.depth + 1, w, inside,
+                                                    branch_key(path.seq, 2), path.index});
                 }
             }
         }
@@ -218,8 +235,10 @@ private:
     }
 
     // Σ_lights (1/n) Σ_s visible_s·light·[(1 − t)·c·diffuse·max(0, N·L_s) + specular·max(0, R_s·V)^p]
+    // With `sampled` (progressive rendering), each area light's cell sum is estimated from one
+    // point of the light instead, point `index` of the path's stratified sequence for that light.
     Color direct(const SurfaceHit& s, const Material& m, const Vec3& N, const Vec3& V, const Color& c,
-                 double t, uint64_t key) {
+                 double t, uint64_t key, const Path* sampled) {
         const double kd = (1.0 - t) * m.diffuse;
         if (lights_.empty() || (!(kd > 0) && !(m.specular > 0))) return Color(0);
         Shading sh;
@@ -252,6 +271,12 @@ private:
                     ss += v * term.sp;
                 }
             } else {
+                if (sampled) {
+                    sampled_area(sh, light, sobol2(sampled->index, light_key(sampled->seq, uint32_t(li))), sd,
+                                 ss);
+                    sum += light.radiance * (kd * c * sd + m.specular * ss) * light.inv_count;
+                    continue;
+                }
                 use_shaft_ = light.count() >= kShaftMinSamples && gather_shaft(sh, light);
                 if (exact_area_ && use_shaft_ &&
                     exact_area(sh, light, light_key(key, uint32_t(li)), sd, ss)) {
@@ -322,6 +347,25 @@ private:
             stats_.shaft_answered_rays += rays;
         }
         return true;
+    }
+
+    // One point of an area light for the whole cell sum: xi ∈ [0, 1)² over the whole light (a
+    // jittered grid's cell sum converges to this integral; a uniform grid's takes its cell's
+    // centre), with one shadow ray. Neither the closed form (exact_area_lights) nor adaptive
+    // sampling applies: the shaft that proves a point fully lit costs more than the one ray.
+    void sampled_area(const Shading& sh, const Light& light, Uniform2 xi, Vis& sd, Vis& ss) {
+        double s = xi.u * double(light.nu), t = xi.v * double(light.nv);
+        if (light.uniform) {
+            s = std::floor(s) + 0.5;
+            t = std::floor(t) + 0.5;
+        }
+        const Vec3 P = light.corner + s * light.du + t * light.dv;
+        const Term term = sample_term(sh, P - sh.p);
+        if (!term.needed) return;
+        const double n = double(light.count());
+        const Vis v = visibility(sh, P - sh.p, P);
+        sd += v * (term.nl * n);
+        ss += v * (term.sp * n);
     }
 
     void full_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
@@ -521,6 +565,7 @@ private:
     IndirectGather<WhittedTracer> indirect_;  // used when kLight == 2
     const PhotonMap* caustics_;               // null without caustics
     bool exact_area_;                         // settings.exact_area_lights
+    bool sampled_lights_;                     // TracerOptions::sampled_lights
     LightCells cells_;                        // area lights: the current point's cells and their terms
     std::vector<Vis> vis_;                    // adaptive lights: per-cell visibility of the current point
     std::vector<uint8_t> state_;              // adaptive lights: kUnknown, kFilled or kProbed per cell

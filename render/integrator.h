@@ -40,6 +40,11 @@ public:
     // py[k], keys key[k]), with the same colours: the camera rays are intersected as a packet.
     virtual void camera_samples(const double* px, const double* py, const uint64_t* key, int n,
                                 Color* out) = 0;
+    // camera_samples for progressive rendering (TracerOptions::sampled_lights): sample k is
+    // point index[k] of its pixel's sequence seq[k] (render/sequence.h), from which each area light
+    // it meets, at any depth, takes one stratified point instead of every cell.
+    virtual void sequence_samples(const double* px, const double* py, const uint64_t* key,
+                                  const uint64_t* seq, const uint32_t* index, int n, Color* out) = 0;
     // The colour seen along any ray (unit direction) at recursion depth 0.
     virtual Color trace_ray(const Ray& ray, uint64_t key) = 0;
 };
@@ -47,6 +52,8 @@ public:
 struct TracerOptions {
     bool specialise = true;        // false: the general path with every effect enabled
     bool adaptive_lights = false;  // every area light adaptive (RenderOptions::adaptive_lights)
+    // sequence_samples: one point of each area light a sample (see direct() in integrator.cpp)
+    bool sampled_lights = false;
 };
 
 // One tracer a thread; it counts into `stats`, which must outlive it.

@@ -14,6 +14,7 @@
 #include "render/integrator.h"
 #include "render/sampling.h"
 #include "render/scene.h"
+#include "render/sequence.h"
 
 namespace wsd::render {
 
@@ -35,16 +36,30 @@ std::vector<Region> tiles_of(const Region& r) {
 struct Passes {
     const Scene& scene;
     const RenderOptions& options;
-    Region region;
-    std::vector<PixelEstimate> pixels;
-    std::vector<AovSum> aov;        // with options.aovs
-    std::vector<uint32_t> planned;  // this pass's sample count per pixel
+    Region region;  // the rendered region and its apron: one pixel around it, inside the image
+    Region inner;   // the rendered region
+    std::vector<PixelEstimate> pixels;  // over `region`
+    std::vector<float> calm;            // per pixel: the largest first-pass spread around it
+    std::vector<AovSum> aov;            // with options.aovs
+    std::vector<uint32_t> planned;      // this pass's sample count per pixel
     std::mutex mutex;
     RayStats stats;
     uint64_t samples_done = 0;  // in the running pass
 
     size_t index(int x, int y) const {
         return size_t(y - region.y0) * size_t(region.x1 - region.x0) + size_t(x - region.x0);
+    }
+    bool in_inner(int x, int y) const {
+        return x >= inner.x0 && x < inner.x1 && y >= inner.y0 && y < inner.y1;
+    }
+
+    // The estimates of the rendered region's pixels, row-major.
+    std::vector<PixelEstimate> inner_pixels() const {
+        std::vector<PixelEstimate> out;
+        out.reserve(size_t(inner.x1 - inner.x0) * size_t(inner.y1 - inner.y0));
+        for (int y = inner.y0; y < inner.y1; ++y)
+            for (int x = inner.x0; x < inner.x1; ++x) out.push_back(pixels[index(x, y)]);
+        return out;
     }
 };
 
@@ -55,12 +70,19 @@ struct Worker {
     std::unique_ptr<AovTracer> aov;
 };
 
+// The sequence key of one half of a pixel's samples (0: even sample indices, 1: odd): the two
+// halves are independent randomisations, each stratified in itself.
+uint64_t half_sequence(uint64_t pixel, uint32_t half) {
+    return mix64(pixel ^ mix64((uint64_t(half) + 1) * kSequenceSalt));
+}
+
 // Traces the planned new samples of the pixels of tile `t`.
 void refine_tile(Passes& p, Worker& w, const Region& t) {
     const uint32_t seed = p.scene.settings().seed;
     constexpr int kMax = Geometry::kMaxPacket;
     double px[kMax], py[kMax];
-    uint64_t key[kMax];
+    uint64_t key[kMax], seq[kMax];
+    uint32_t index[kMax];
     Color out[kMax];
     uint64_t traced = 0;
     for (int y = t.y0; y < t.y1; ++y) {
@@ -68,16 +90,19 @@ void refine_tile(Passes& p, Worker& w, const Region& t) {
             const size_t i = p.index(x, y);
             PixelEstimate& e = p.pixels[i];
             const uint64_t pk = pixel_key(seed, x, y);
+            const uint64_t half_key[2] = {half_sequence(pk, 0), half_sequence(pk, 1)};
             const uint32_t target = p.planned[i];
             for (uint32_t s = e.n; s < target;) {
                 int n = 0;
                 for (; n < kMax && s < target; ++n, ++s) {
                     key[n] = sample_key(pk, s);
-                    const Uniform2 j = camera_jitter(key[n]);
+                    seq[n] = half_key[s & 1u];
+                    index[n] = s >> 1;
+                    const Uniform2 j = sobol2(index[n], seq[n] ^ kCameraSalt);
                     px[n] = x + j.u;
                     py[n] = y + j.v;
                 }
-                w.tracer->camera_samples(px, py, key, n, out);
+                w.tracer->sequence_samples(px, py, key, seq, index, n, out);
                 for (int k = 0; k < n; ++k) {
                     if (finite3(out[k])) {
                         e.add(out[k]);
@@ -97,42 +122,77 @@ void refine_tile(Passes& p, Worker& w, const Region& t) {
     p.samples_done += traced;
 }
 
-// Plans the next pass at `target`; the number of samples it adds.
+// Plans the next pass at `target`; the number of samples it adds. The apron's pixels take their
+// first pass only.
 uint64_t plan_pass(Passes& p, double target, const Progressive& options) {
     uint64_t added = 0;
-    for (size_t i = 0; i < p.pixels.size(); ++i) {
-        p.planned[i] = planned_samples(p.pixels[i], target, options);
-        added += p.planned[i] - p.pixels[i].n;
+    for (int y = p.region.y0; y < p.region.y1; ++y) {
+        for (int x = p.region.x0; x < p.region.x1; ++x) {
+            const size_t i = p.index(x, y);
+            const PixelEstimate& e = p.pixels[i];
+            if (e.n > 0 && !p.in_inner(x, y)) {
+                p.planned[i] = e.n;
+                continue;
+            }
+            p.planned[i] = planned_samples(e, target, options, p.calm.empty() ? kNotCalm : double(p.calm[i]));
+            added += p.planned[i] - e.n;
+        }
     }
     return added;
 }
 
+// After the first pass: each pixel's largest first-pass spread over itself and its eight
+// neighbours (those in the image; the apron holds the ones outside the region).
+void measure_calm(Passes& p) {
+    const int w = p.region.x1 - p.region.x0, h = p.region.y1 - p.region.y0;
+    std::vector<float> spread(p.pixels.size());
+    for (size_t i = 0; i < p.pixels.size(); ++i) spread[i] = float(p.pixels[i].display_spread());
+    p.calm.assign(p.pixels.size(), 0.0f);
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            float m = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if (u >= 0 && u < w && v >= 0 && v < h)
+                        m = std::max(m, spread[size_t(v) * size_t(w) + size_t(u)]);
+                }
+            p.calm[size_t(y) * size_t(w) + size_t(x)] = m;
+        }
+    }
+}
+
 void write_film(const Passes& p, RenderResult& result) {
-    for (size_t i = 0; i < p.pixels.size(); ++i) {
-        const Color m = p.pixels[i].mean();
-        const float v[3] = {float(m.x), float(m.y), float(m.z)};
-        const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-        if (!ok) ++result.stats.nonfinite_samples;  // a finite double too large for a float
-        for (size_t k = 0; k < 3; ++k) result.film.rgb[3 * i + k] = ok ? v[k] : 0.0f;
-        if (!p.aov.empty()) {
-            const AovSample s = p.aov[i].mean();
-            for (int k = 0; k < 3; ++k) {
-                result.aovs.albedo[3 * i + size_t(k)] = float(s.albedo[k]);
-                result.aovs.normal[3 * i + size_t(k)] = float(s.normal[k]);
+    const std::vector<PixelEstimate> pixels = p.inner_pixels();
+    size_t i = 0;
+    for (int y = p.inner.y0; y < p.inner.y1; ++y) {
+        for (int x = p.inner.x0; x < p.inner.x1; ++x, ++i) {
+            const Color m = pixels[i].mean();
+            const float v[3] = {float(m.x), float(m.y), float(m.z)};
+            const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+            if (!ok) ++result.stats.nonfinite_samples;  // a finite double too large for a float
+            for (size_t k = 0; k < 3; ++k) result.film.rgb[3 * i + k] = ok ? v[k] : 0.0f;
+            if (!p.aov.empty()) {
+                const AovSample s = p.aov[p.index(x, y)].mean();
+                for (int k = 0; k < 3; ++k) {
+                    result.aovs.albedo[3 * i + size_t(k)] = float(s.albedo[k]);
+                    result.aovs.normal[3 * i + size_t(k)] = float(s.normal[k]);
+                }
+                result.aovs.depth[i] = float(s.depth);
             }
-            result.aovs.depth[i] = float(s.depth);
         }
     }
 }
 
 void report(const Passes& p, ProgressiveReport& r) {
     r.used = true;
-    r.estimated_rmse = estimated_rmse(p.pixels);
-    std::vector<uint32_t> counts(p.pixels.size());
-    r.samples.resize(p.pixels.size());
+    const std::vector<PixelEstimate> pixels = p.inner_pixels();
+    r.estimated_rmse = estimated_rmse(pixels);
+    std::vector<uint32_t> counts(pixels.size());
+    r.samples.resize(pixels.size());
     r.samples_total = 0;
-    for (size_t i = 0; i < p.pixels.size(); ++i) {
-        counts[i] = p.pixels[i].n;
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        counts[i] = pixels[i].n;
         r.samples[i] = float(counts[i]);
         r.samples_total += counts[i];
     }
@@ -146,13 +206,15 @@ void report(const Passes& p, ProgressiveReport& r) {
 
 }  // namespace
 
-uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options) {
+uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options, double calm) {
     const uint32_t max = uint32_t(std::max(options.max_samples, 1));
     if (e.n == 0) return std::min(uint32_t(std::max(options.first_samples, 1)), max);
     if (e.n >= max) return e.n;
     const double v = e.display_variance(PixelEstimate::Decide);
     const uint32_t min = std::min(uint32_t(std::max(options.min_samples, 1)), max);
-    if (e.n >= min && v <= target * target) return e.n;
+    // Before `min_samples`, only a pixel whose samples all agree within the target may stop: the
+    // few samples' variance alone would let edges that the first samples missed stop too early.
+    if (v <= target * target && (e.n >= min || calm <= target)) return e.n;
     const double n = e.n;
     // The count that would meet the target if the sample variance held (1.1: a little margin).
     const double want = target > 0 ? n * v / (target * target) * 1.1 : 2 * n;
@@ -171,13 +233,25 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
                         const ParallelOptions& parallel_base, RenderResult& result) {
     const Progressive& prog = *options.progressive;
     const auto start = Clock::now();
-    const size_t count = size_t(region.x1 - region.x0) * size_t(region.y1 - region.y0);
-    Passes p{scene, options, region, std::vector<PixelEstimate>(count), {}, std::vector<uint32_t>(count),
-             {},    {},      0};
+    const Settings& settings = scene.settings();
+    const Region apron{std::max(region.x0 - 1, 0), std::max(region.y0 - 1, 0),
+                       std::min(region.x1 + 1, settings.width), std::min(region.y1 + 1, settings.height)};
+    const size_t count = size_t(apron.x1 - apron.x0) * size_t(apron.y1 - apron.y0);
+    Passes p{scene,
+             options,
+             apron,
+             region,
+             std::vector<PixelEstimate>(count),
+             {},
+             {},
+             std::vector<uint32_t>(count),
+             {},
+             {},
+             0};
     if (options.aovs) p.aov.resize(count);
-    const std::vector<Region> tiles = tiles_of(region);
+    const std::vector<Region> tiles = tiles_of(apron);
     std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
-    const TracerOptions tracer_options{options.specialise, options.adaptive_lights};
+    const TracerOptions tracer_options{options.specialise, options.adaptive_lights, true};
 
     ProgressiveReport& out = result.progressive;
     int pass = 0;
@@ -218,6 +292,7 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
             refine_tile(p, *w, tiles[i]);
         });
         if (!complete) break;
+        if (pass == 0) measure_calm(p);
         ++pass;
         if (prog.deadline && Clock::now() >= *prog.deadline) {
             out.deadline_reached = true;
@@ -226,7 +301,7 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
         }
         // With a target every pass aims at it; without one, at the image's current estimate,
         // so that each pass refines the pixels whose error is above it.
-        target = prog.target_error > 0 ? prog.target_error : estimated_rmse(p.pixels);
+        target = prog.target_error > 0 ? prog.target_error : estimated_rmse(p.inner_pixels());
     }
     result.stats += p.stats;
     out.passes = pass;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "render/parallel.h"
@@ -19,7 +20,14 @@ namespace wsd::render {
 // for a pixel without samples; its own count once it has at least `min_samples` and an error
 // of at most the target, or `max_samples`; else about the count that would meet the target,
 // between 1.25 and 2 times its count, at least `min_samples` and at most `max_samples`.
-uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options);
+//
+// Below `min_samples` a pixel may stop only if `calm` (the largest spread of first-pass samples,
+// PixelEstimate::display_spread, over the pixel and its eight neighbours) is at most the target:
+// a few samples that happen to agree do not prove a pixel flat, but a neighbourhood whose first
+// samples all agree rarely hides an edge or a penumbra.
+inline constexpr double kNotCalm = std::numeric_limits<double>::infinity();
+uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options,
+                         double calm = kNotCalm);
 
 // The image's estimated display-space RMSE: the root of the mean of its pixels' display
 // variances from their reporting halves (0 for no pixels).

@@ -73,26 +73,39 @@ TEST_CASE("a pixel's display variance follows its samples' variance through the 
     const auto decide = PixelEstimate::Decide, report = PixelEstimate::Report;
     PixelEstimate e;
     CHECK(std::isinf(e.display_variance(decide)));
-    for (int i = 0; i < 3; ++i) e.add(Color(0.5));
-    CHECK(e.display_variance(decide) == 0);         // samples 0 and 2
-    CHECK(std::isinf(e.display_variance(report)));  // sample 1 alone: no variance yet
+    CHECK(std::isinf(e.display_variance(report)));
     e.add(Color(0.5));
-    CHECK(e.display_variance(report) == 0);
+    CHECK(std::isinf(e.display_variance(report)));  // no odd sample yet
+    for (int i = 0; i < 2; ++i) e.add(Color(0.5));
+    CHECK(e.display_variance(decide) == 0);  // samples 0 and 2
+    CHECK(e.display_variance(report) == 0);  // the halves agree
     // Samples 0.2 ± 0.01 in the pattern − − + +: each half alternates, with sample variance
     // 0.01² · 32/31; the mean of all 64 has standard error 0.01 · √(32/31/64), in display space
-    // times the sRGB curve's slope at 0.2.
+    // times the sRGB curve's slope at 0.2. The halves' means agree: no reported error.
     PixelEstimate f;
     const int n = 64;
     for (int i = 0; i < n; ++i) f.add(Color((i / 2) % 2 ? 0.21 : 0.19));
     const double sigma = 0.01 * std::sqrt(32.0 / 31.0 / n);
     const double slope = (display_value(0.2 + 1e-6) - display_value(0.2 - 1e-6)) / 2e-6;
     CHECK(std::sqrt(f.display_variance(decide)) == Approx(slope * sigma).epsilon(1e-3));
-    CHECK(std::sqrt(f.display_variance(report)) == Approx(slope * sigma).epsilon(1e-3));
-    // The halves are separate: variation in one half only shows in that half's estimate.
+    CHECK(f.display_variance(report) == 0);
+    // The report is the halves' difference: even samples 0.19, odd 0.21, 32 each, give
+    // (d/2)² with d the difference of their displayed values.
+    PixelEstimate h;
+    for (int i = 0; i < n; ++i) h.add(Color(i % 2 ? 0.21 : 0.19));
+    CHECK(h.display_variance(decide) == 0);
+    const double d = display_value(0.21) - display_value(0.19);
+    CHECK(std::sqrt(h.display_variance(report)) == Approx(d / 2).epsilon(1e-9));
+    // Unequal halves (5 even, 4 odd) weigh the difference by 5·4/9².
+    PixelEstimate u;
+    for (int i = 0; i < 9; ++i) u.add(Color(i % 2 ? 0.21 : 0.19));
+    CHECK(u.display_variance(report) == Approx(d * d * 20.0 / 81.0).epsilon(1e-9));
+    // Variation within a half alone does not show in the report: even samples 0.2 and 0.4, odd
+    // ones 0.3, the same mean.
     PixelEstimate g;
-    for (int i = 0; i < 8; ++i) g.add(Color(i % 2 ? 0.3 : (i % 4 ? 0.1 : 0.2)));
+    for (int i = 0; i < 8; ++i) g.add(Color(i % 2 ? 0.3 : (i % 4 ? 0.4 : 0.2)));
     CHECK(g.display_variance(decide) > 0);
-    CHECK(g.display_variance(report) == 0);
+    CHECK(g.display_variance(report) == Approx(0).margin(1e-12));
     // Above 1 everything displays as white: no display error.
     PixelEstimate white;
     for (int i = 0; i < 8; ++i) white.add(Color((i / 2) % 2 ? 3.0 : 5.0));
