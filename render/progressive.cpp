@@ -1,7 +1,9 @@
 // Progressive passes over 16×16 tiles with parallel_for. Before each pass a serial scan plans
 // every pixel's new sample count (planned_samples); a pass with nothing planned ends the render.
 // Each thread traces its pixels' new samples as packets and adds them to the pixel's sums in
-// sample order, so a pixel's value depends on its samples alone.
+// sample order, so a pixel's value depends on its samples alone. The first pass also covers an
+// apron of one pixel around the region (inside the image), whose first samples only serve the
+// neighbourhood guard of planned_samples; the apron is neither refined nor written.
 #include "render/progressive.h"
 
 #include <algorithm>

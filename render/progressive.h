@@ -1,8 +1,10 @@
-// Progressive rendering (RenderOptions::progressive): passes of random camera samples, each
+// Progressive rendering (RenderOptions::progressive): passes of stratified camera samples, each
 // pixel's samples indexed 0, 1, 2 … so that a pixel's n-th sample is the same whatever happened
-// before it, and a pixel's sample count decided by its own estimate (render/pixel_estimate.h)
-// and the pass's target alone. A pixel sample is a camera sample with everything it shades
-// (area light cells, reflections, refractions), so more pixel samples refine all of them.
+// before it, and a pixel's sample count decided by its own estimate (render/pixel_estimate.h),
+// its neighbourhood's first pass and the pass's target alone. Even and odd samples are two
+// independent scrambles of one (0,2)-sequence (render/sequence.h). A pixel sample is a camera
+// sample with everything it shades (one stratified point of each area light, reflections,
+// refractions), so more pixel samples refine all of them.
 #pragma once
 
 #include <cstdint>

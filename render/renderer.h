@@ -36,10 +36,11 @@ struct Region {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-// Progressive rendering (render/progressive.h): a first pass of `first_samples` random camera
+// Progressive rendering (render/progressive.h): a first pass of `first_samples` stratified camera
 // samples in every pixel, then passes that add samples where the estimated display-space error
-// is largest. With a target, a pixel stops once it has at least `min_samples` and its own
-// estimate is at most the target (so the image does not depend on threads or tiles); without
+// is largest. With a target, a pixel stops once its own estimate is at most the target and it has
+// at least `min_samples` or a calm neighbourhood (planned_samples), so the image does not depend
+// on threads or tiles; without
 // one, each pass refines the pixels whose error is above the image's current estimate. Passes
 // stop when no pixel needs more (or all have `max_samples`), or at the deadline, checked between
 // passes.

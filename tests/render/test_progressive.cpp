@@ -96,6 +96,8 @@ TEST_CASE("a pixel's display variance follows its samples' variance through the 
     CHECK(h.display_variance(decide) == 0);
     const double d = display_value(0.21) - display_value(0.19);
     CHECK(std::sqrt(h.display_variance(report)) == Approx(d / 2).epsilon(1e-9));
+    CHECK(h.display_spread() == Approx(d).epsilon(1e-12));  // the largest difference as displayed
+    CHECK(PixelEstimate{}.display_spread() == 0);
     // Unequal halves (5 even, 4 odd) weigh the difference by 5·4/9².
     PixelEstimate u;
     for (int i = 0; i < 9; ++i) u.add(Color(i % 2 ? 0.21 : 0.19));
@@ -147,6 +149,9 @@ TEST_CASE("planned_samples: first pass, minimum, target, growth and maximum", "[
     CHECK(planned_samples(e, 0.01, o) == 4);
     for (int i = 0; i < 4; ++i) e.add(Color(0.3));
     CHECK(planned_samples(e, 0.01, o) == 8);  // no variance, but below the minimum
+    // A calm neighbourhood (first-pass spread at most the target) lets it stop at its first pass.
+    CHECK(planned_samples(e, 0.01, o, 0.01) == 4);
+    CHECK(planned_samples(e, 0.01, o, 0.02) == 8);
     for (int i = 0; i < 4; ++i) e.add(Color(0.3));
     CHECK(planned_samples(e, 0.01, o) == 8);  // converged
     PixelEstimate noisy;
