@@ -42,12 +42,12 @@ TEST_CASE("--target-error and --time-limit: zero, negative, NaN, infinite and hu
     RunResult r = run_wsd(dir, "render s.wsd --quiet --aov samples");
     CHECK(r.status == 2);
     CHECK(r.err.find("--target-error") != std::string::npos);
-    // A huge target is met by every pixel at the minimum sample count.
+    // A huge target is met by every pixel at its first pass (samples never differ by more than 1).
     r = run_wsd(dir, "render s.wsd --quiet --target-error 1e9 --stats-json s.json -o huge.png");
     REQUIRE(r.status == 0);
     const auto json = nlohmann::json::parse(read_file(dir / "s.json"));
-    CHECK(json["samples_per_pixel"]["min"] == 16);
-    CHECK(json["samples_per_pixel"]["max"] == 16);
+    CHECK(json["samples_per_pixel"]["min"] == 4);
+    CHECK(json["samples_per_pixel"]["max"] == 4);
     CHECK(json["target_reached"] == true);
 }
 
@@ -62,13 +62,14 @@ TEST_CASE("a targeted render: statistics, samples map, and tiles that merge byte
     CHECK(r.err.find("progressive: ") != std::string::npos);
     const auto json = nlohmann::json::parse(read_file(dir / "s.json"));
     CHECK(json["estimated_rmse"].get<double>() > 0);
-    // The reported estimate comes from the samples that did not decide: near the target, not under it.
+    // The reported estimate comes from the samples that did not decide; the deciding one is
+    // conservative, so it lies below the target.
     CHECK(json["estimated_rmse"].get<double>() <= 0.03 * 1.5);
     CHECK(json["passes"].get<int>() >= 2);
     CHECK(json["target_error"] == 0.03);
     CHECK(json["time_limit"].is_null());
     const int lo = json["samples_per_pixel"]["min"], hi = json["samples_per_pixel"]["max"];
-    CHECK(lo >= 16);
+    CHECK(lo >= 4);  // the first pass
     CHECK(hi > lo);
     int width = 0;
     const std::vector<float> samples = grey_pfm(read_file(dir / "whole.samples.pfm"), width);
