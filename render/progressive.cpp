@@ -55,13 +55,14 @@ struct Passes {
         return x >= inner.x0 && x < inner.x1 && y >= inner.y0 && y < inner.y1;
     }
 
-    // The estimates of the rendered region's pixels, row-major.
-    std::vector<PixelEstimate> inner_pixels() const {
-        std::vector<PixelEstimate> out;
-        out.reserve(size_t(inner.x1 - inner.x0) * size_t(inner.y1 - inner.y0));
+    // The rendered region's estimated display-space RMSE (as estimated_rmse, without a copy).
+    double inner_rmse() const {
+        double sum = 0;
         for (int y = inner.y0; y < inner.y1; ++y)
-            for (int x = inner.x0; x < inner.x1; ++x) out.push_back(pixels[index(x, y)]);
-        return out;
+            for (int x = inner.x0; x < inner.x1; ++x)
+                sum += pixels[index(x, y)].display_variance(PixelEstimate::Report);
+        const double count = double(inner.x1 - inner.x0) * double(inner.y1 - inner.y0);
+        return count > 0 ? std::sqrt(sum / count) : 0.0;
     }
 };
 
@@ -78,46 +79,54 @@ uint64_t half_sequence(uint64_t pixel, uint32_t half) {
     return mix64(pixel ^ mix64((uint64_t(half) + 1) * kSequenceSalt));
 }
 
-// Traces the planned new samples of the pixels of tile `t`.
+// Traces the planned new samples of the pixels of tile `t`, as packets that may span pixels;
+// each pixel's samples are added to its sums in sample order.
 void refine_tile(Passes& p, Worker& w, const Region& t) {
     const uint32_t seed = p.scene.settings().seed;
     constexpr int kMax = Geometry::kMaxPacket;
     double px[kMax], py[kMax];
     uint64_t key[kMax], seq[kMax];
     uint32_t index[kMax];
+    size_t owner[kMax];
     Color out[kMax];
     uint64_t traced = 0;
+    int n = 0;
+    auto flush = [&] {
+        if (n == 0) return;
+        w.tracer->sequence_samples(px, py, key, seq, index, n, out);
+        for (int k = 0; k < n; ++k) {
+            PixelEstimate& e = p.pixels[owner[k]];
+            if (finite3(out[k])) {
+                e.add(out[k]);
+            } else {
+                ++w.stats.nonfinite_samples;
+                e.add(Color(0));
+            }
+            if (w.aov) p.aov[owner[k]].add(w.aov->sample(px[k], py[k]));
+        }
+        traced += uint64_t(n);
+        n = 0;
+    };
     for (int y = t.y0; y < t.y1; ++y) {
         for (int x = t.x0; x < t.x1; ++x) {
             const size_t i = p.index(x, y);
-            PixelEstimate& e = p.pixels[i];
+            const uint32_t target = p.planned[i];
+            if (p.pixels[i].n >= target) continue;
             const uint64_t pk = pixel_key(seed, x, y);
             const uint64_t half_key[2] = {half_sequence(pk, 0), half_sequence(pk, 1)};
-            const uint32_t target = p.planned[i];
-            for (uint32_t s = e.n; s < target;) {
-                int n = 0;
-                for (; n < kMax && s < target; ++n, ++s) {
-                    key[n] = sample_key(pk, s);
-                    seq[n] = half_key[s & 1u];
-                    index[n] = s >> 1;
-                    const Uniform2 j = sobol2(index[n], seq[n] ^ kCameraSalt);
-                    px[n] = x + j.u;
-                    py[n] = y + j.v;
-                }
-                w.tracer->sequence_samples(px, py, key, seq, index, n, out);
-                for (int k = 0; k < n; ++k) {
-                    if (finite3(out[k])) {
-                        e.add(out[k]);
-                    } else {
-                        ++w.stats.nonfinite_samples;
-                        e.add(Color(0));
-                    }
-                    if (w.aov) p.aov[i].add(w.aov->sample(px[k], py[k]));
-                }
-                traced += uint64_t(n);
+            for (uint32_t s = p.pixels[i].n; s < target; ++s) {
+                key[n] = sample_key(pk, s);
+                seq[n] = half_key[s & 1u];
+                index[n] = s >> 1;
+                owner[n] = i;
+                const Uniform2 j = sobol2(index[n], seq[n] ^ kCameraSalt);
+                px[n] = x + j.u;
+                py[n] = y + j.v;
+                if (++n == kMax) flush();
             }
         }
     }
+    flush();
     std::lock_guard lock(p.mutex);
     p.stats += w.stats;
     w.stats = RayStats{};
@@ -165,11 +174,10 @@ void measure_calm(Passes& p) {
 }
 
 void write_film(const Passes& p, RenderResult& result) {
-    const std::vector<PixelEstimate> pixels = p.inner_pixels();
     size_t i = 0;
     for (int y = p.inner.y0; y < p.inner.y1; ++y) {
         for (int x = p.inner.x0; x < p.inner.x1; ++x, ++i) {
-            const Color m = pixels[i].mean();
+            const Color m = p.pixels[p.index(x, y)].mean();
             const float v[3] = {float(m.x), float(m.y), float(m.z)};
             const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
             if (!ok) ++result.stats.nonfinite_samples;  // a finite double too large for a float
@@ -188,13 +196,14 @@ void write_film(const Passes& p, RenderResult& result) {
 
 void report(const Passes& p, ProgressiveReport& r) {
     r.used = true;
-    const std::vector<PixelEstimate> pixels = p.inner_pixels();
-    r.estimated_rmse = estimated_rmse(pixels);
-    std::vector<uint32_t> counts(pixels.size());
-    r.samples.resize(pixels.size());
+    r.estimated_rmse = p.inner_rmse();
+    std::vector<uint32_t> counts;
+    counts.reserve(size_t(p.inner.x1 - p.inner.x0) * size_t(p.inner.y1 - p.inner.y0));
+    for (int y = p.inner.y0; y < p.inner.y1; ++y)
+        for (int x = p.inner.x0; x < p.inner.x1; ++x) counts.push_back(p.pixels[p.index(x, y)].n);
+    r.samples.resize(counts.size());
     r.samples_total = 0;
-    for (size_t i = 0; i < pixels.size(); ++i) {
-        counts[i] = pixels[i].n;
+    for (size_t i = 0; i < counts.size(); ++i) {
         r.samples[i] = float(counts[i]);
         r.samples_total += counts[i];
     }
@@ -303,7 +312,7 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
         }
         // With a target every pass aims at it; without one, at the image's current estimate,
         // so that each pass refines the pixels whose error is above it.
-        target = prog.target_error > 0 ? prog.target_error : estimated_rmse(p.inner_pixels());
+        target = prog.target_error > 0 ? prog.target_error : p.inner_rmse();
     }
     result.stats += p.stats;
     out.passes = pass;
