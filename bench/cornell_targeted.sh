@@ -52,7 +52,7 @@ if [[ ! -f $reference ]]; then
 fi
 ref_est=$(json "${reference%.pfm}.json" estimated_rmse)
 echo "reference ${size}x${size} --target-error $ref_target: estimated RMSE $ref_est"
-net() { awk -v m="$1" -v r="$ref_est" 'BEGIN { d = m * m - r * r; printf "%.6f", d > 0 ? sqrt(d) : 0 }'; }
+net() { awk -v m="$1" -v r="$ref_est" 'BEGIN { d = m * m - r * r; printf "%.6f", (d > 0) ? sqrt(d) : 0 }'; }
 
 wsd_run() {  # wsd_run NAME SCENE [options...]: prints CPU-s
   local name=$1 scene=$2 t; shift 2
