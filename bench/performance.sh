@@ -15,8 +15,9 @@
 #                   `sections` below) and replace them in the existing page, each stamped with its
 #                   own date and load; the rest of the page stays as its run measured it
 #   -o OUT          the page to write (default docs/performance.md)
-# A full run takes about 10 CPU-minutes, mostly on one thread: 20 minutes of wall time on a busy
-# 2-core machine.
+# A full run takes about 15 CPU-minutes, mostly on one thread: 30 minutes of wall time on a busy
+# 2-core machine, and up to 10 more the first time, for the Cornell box's converged reference
+# (cached under BUILD_DIR/bench-cache).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -230,7 +231,7 @@ targeted_table() {
   fi
   local size=$cornell
   log "bench/cornell_targeted.sh $size 1"
-  bench/cornell_targeted.sh "$size" 1 >"$tmp/targeted.txt"
+  CACHE="$build/bench-cache" bench/cornell_targeted.sh "$size" 1 >"$tmp/targeted.txt"
   local ref_est target
   ref_est=$(awk '/^reference / { print $NF; exit }' "$tmp/targeted.txt")
   target=$(awk '/^target E/ { print $NF; exit }' "$tmp/targeted.txt")
@@ -245,7 +246,7 @@ targeted_table() {
        "" \
        "| renderer and settings | CPU-s | RMSE | net | estimated RMSE | CPU time, POV-Ray ÷ this |" \
        "|---|---:|---:|---:|---:|---:|"
-  awk '$1 == "povray" { l = "POV-Ray, adaptive 1" } $1 == "default" { l = "wsd, the scene'"'"'s settings" }
+  awk '$2 !~ /^[0-9.]+$/ { next } $1 == "povray" { l = "POV-Ray, adaptive 1" } $1 == "default" { l = "wsd, the scene'"'"'s settings" }
        $1 == "exact" { l = "wsd, exact" } $1 == "targeted" { l = "wsd, targeted" }
        l != "" { printf "| %s | %.2f | %s | %s | %s | %s× |\n", l, $2, $3, $4, $5 == "-" ? "—" : $5, $6; l = "" }' \
     "$tmp/targeted.txt" >>"$page"
