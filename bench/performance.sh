@@ -11,12 +11,13 @@
 #                   `wsd bench` output then goes to a temporary directory instead of docs/bench/
 #   --baseline WSD  an older wsd executable: every example is rendered by both, alternating, and
 #                   the page says whether the images are byte-identical and how the times compare
-#   --only NAMES    measure only these sections (comma-separated: cornell, adaptive, bench, …; see
+#   --only NAMES    measure only these sections (comma-separated: cornell, honesty, targeted, …; see
 #                   `sections` below) and replace them in the existing page, each stamped with its
 #                   own date and load; the rest of the page stays as its run measured it
 #   -o OUT          the page to write (default docs/performance.md)
-# A full run takes about 10 CPU-minutes, mostly on one thread: 20 minutes of wall time on a busy
-# 2-core machine.
+# A full run takes about 15 CPU-minutes, mostly on one thread: 30 minutes of wall time on a busy
+# 2-core machine, and up to 10 more the first time, for the Cornell box's converged reference
+# (cached under BUILD_DIR/bench-cache).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -194,6 +195,62 @@ bench_table() {
   awk -F, 'function commas(n) { while (n ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9]($|,)/, ",&", n); return n }
            NR > 1 { printf "| %s | %s | %.2f | %s | %.6f | %.2f | %.5f | %s |\n",
                     $1, $2, $4, commas($6), $10, $11, $13, ($14 == 1 ? "*" : "") }' "$bench_dir/bench.csv" >>"$page"
+}
+
+# ---------------------------------------------------------------- how honest the error estimate is
+honesty_table() {
+  section "How honest \`--target-error\`'s estimate is"
+  local args=(80 60 "0.02 0.01" 0.0025)
+  ((quick)) && args=(24 18 "0.04" 0.01)
+  log "bench/target_error_honesty.sh ${args[*]}"
+  bench/target_error_honesty.sh "${args[@]}" >"$tmp/honesty.txt"
+  para "\`bench/target_error_honesty.sh ${args[0]} ${args[1]} \"${args[2]}\" ${args[3]}\`: every example scene and the" \
+       "three scenes of bench/scenes/honesty-*.wsd (a textured floor at grazing angles, a glass sphere" \
+       "over a checker, a room lit by an emissive sphere through indirect light) at ${args[0]}×${args[1]}," \
+       "rendered with \`--target-error\` at each target and compared by \`wsd diff\` with a reference" \
+       "(\`--target-error ${args[3]}\`, another seed, at most 8 s). Estimated: the render's \`estimated_rmse\`;" \
+       "measured: the RMSE against the reference; raw = measured ÷ estimated. The reference keeps some" \
+       "error of its own (its estimate: pixels stop at 1024 samples, slow scenes at 8 s), which adds in quadrature: an honest estimate" \
+       "predicts sqrt(estimated² + reference²), and ratio = measured ÷ predicted. Within: the ratio" \
+       "lies within 1.5× either way." \
+       "" \
+       "| scene | target | estimated | measured | raw | reference | predicted | ratio | within 1.5× |" \
+       "|---|---:|---:|---:|---:|---:|---:|---:|:---:|"
+  awk 'NF >= 9 && $2 ~ /^[0-9.]+$/ { printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $4, $5, $6, $7, $8, $9 }' \
+    "$tmp/honesty.txt" >>"$page"
+  para "" "$(awk '/^within 1.5x:/ { printf "Within 1.5× by ratio: %s of %s renders; by raw: %s of %s.", $3, $5, $8, $10 }' "$tmp/honesty.txt")"
+}
+
+# ---------------------------------------------------------------- the Cornell box at equal error
+targeted_table() {
+  section "The Cornell box at equal error: targeted rendering against POV-Ray"
+  if ! command -v povray >/dev/null; then
+    para "POV-Ray is not installed on this machine (\`apt-get install povray\`), so this comparison was" \
+         "not made."
+    return
+  fi
+  local size=$cornell
+  log "bench/cornell_targeted.sh $size 1"
+  CACHE="$build/bench-cache" bench/cornell_targeted.sh "$size" 1 >"$tmp/targeted.txt"
+  local ref_est target
+  ref_est=$(awk '/^reference / { print $NF; exit }' "$tmp/targeted.txt")
+  target=$(awk '/^target E/ { print $NF; exit }' "$tmp/targeted.txt")
+  para "\`bench/cornell_targeted.sh $size 1\`: the Cornell box at ${size}×${size}, one thread, one run of each," \
+       "one after the other. RMSE is \`wsd diff\` against wsd's converged reference at the same size" \
+       "(\`--target-error 0.004\` with \`exact_area_lights on\`, another seed, at most 600 s, cached under" \
+       "build/bench-cache; its own estimated RMSE $(fmt "$ref_est" 6), which adds in quadrature: net is" \
+       "sqrt(RMSE² − reference²), the row's own error). POV-Ray has \`adaptive 1\` on its area light; its RMSE also holds the" \
+       "differences between the two renderers' models. \"Exact\" is \`--adaptive-lights\` with" \
+       "\`exact_area_lights on\`; \"targeted\" adds \`--target-error $(fmt "$target" 6)\`, the default row's" \
+       "net error. CPU-s is user + system time of the whole process." \
+       "" \
+       "| renderer and settings | CPU-s | RMSE | net | estimated RMSE | CPU time, POV-Ray ÷ this |" \
+       "|---|---:|---:|---:|---:|---:|"
+  awk '$2 !~ /^[0-9.]+$/ { next } $1 == "povray" { l = "POV-Ray, adaptive 1" } $1 == "default" { l = "wsd, the scene'"'"'s settings" }
+       $1 == "exact" { l = "wsd, exact" } $1 == "targeted" { l = "wsd, targeted" }
+       l != "" { printf "| %s | %.2f | %s | %s | %s | %s× |\n", l, $2, $3, $4, $5 == "-" ? "—" : $5, $6; l = "" }' \
+    "$tmp/targeted.txt" >>"$page"
+  para "" "Samples per pixel of the targeted render (min/median/max): $(awk -F': ' '/^targeted samples/ { print $2 }' "$tmp/targeted.txt")."
 }
 
 # ---------------------------------------------------------------- indirect light against POV-Ray radiosity
@@ -512,7 +569,7 @@ preview_table() {
 }
 
 # ---------------------------------------------------------------- the page
-sections=(cornell caustics adaptive bench indirect threads mesh embree primitives csg instances baseline parse lsp preview)
+sections=(cornell caustics adaptive bench honesty targeted indirect threads mesh embree primitives csg instances baseline parse lsp preview)
 for name in ${only//,/ }; do
   [[ " ${sections[*]} " == *" $name "* ]] || { echo "performance: no section '$name' (${sections[*]})" >&2; exit 2; }
 done

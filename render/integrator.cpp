@@ -323,7 +323,8 @@ private:
     // settings.exact_area_lights: where the shaft proves every shadow ray reaches the light and
     // the whole light lies above the tangent plane (and on the viewer's side of an opaque
     // surface), the diffuse sum is count × the exact average of N·L over the light, the limit of
-    // the jittered cell sum; the specular term is still summed over the cells. False elsewhere.
+    // the jittered cell sum; the specular term is still summed over the cells, where the
+    // material has one and its lobe can reach the light (specular_lobe_reaches). False elsewhere.
     bool exact_area(const Shading& sh, const Light& light, uint64_t lkey, Vis& sd, Vis& ss) {
         if (shaft_.blocked || shaft_.count != 0 || (kTransmissive && shaft_.transmissive)) return false;
         const Vec3 u = light.du * double(light.nu), v = light.dv * double(light.nv);
@@ -334,7 +335,7 @@ private:
         const double avg = rect_light_average_cosine(sh.p, sh.N, light.corner, u, v);
         if (!std::isfinite(avg)) return false;
         if (sh.diffuse) sd += Vis(avg * double(light.count()));
-        if (sh.specular > 0) {
+        if (sh.specular > 0 && specular_lobe_reaches(sh, light.corner, u, v)) {
             const int n = cells_.prepare(sh, light, lkey);
             uint64_t rays = 0;
             for (int k = 0; k < n; ++k) {

@@ -74,6 +74,26 @@ inline Term sample_term(const Shading& sh, const Vec3& to_light) {
     return finish_term(sh, raw_term(sh, to_light.x, to_light.y, to_light.z));
 }
 
+// Whether a specular lobe can reach the parallelogram light c + [0, 1]·u + [0, 1]·v: false only
+// where max(0, R·V)^shininess is provably 0 at every point of it, so that its cells' specular sum
+// is exactly 0 and can be skipped. R·V, with R the mirror of L about N, equals L·M with
+// M = 2(N·V)N − V, the mirror of V about N, and L ∝ p − x: the sign of M·(p − x), which is linear
+// in p, so it is at most 0 over the parallelogram when it is at its four corners. The corners
+// must clear it by δ·|M|·(|q − x| + |c| + |u| + |v|), δ = 10⁻⁹: that covers the rounding of the
+// cells' points (within 10⁻¹⁵·(|c| + |u| + |v|) of the parallelogram) and of raw_term's R·V
+// (within 10⁻¹⁴ of the exact value), so every cell's computed R·V is ≤ −δ·|M| < 0, not 0 by luck.
+inline bool specular_lobe_reaches(const Shading& sh, const Vec3& c, const Vec3& u, const Vec3& v) {
+    constexpr double kDelta = 1e-9;
+    const Vec3 m = (2.0 * sh.nv) * sh.N - sh.V;
+    const double mlen = glm::length(m);
+    const double size = glm::length(c) + glm::length(u) + glm::length(v);
+    for (const Vec3& q : {c, c + u, c + v, c + u + v}) {
+        const Vec3 d = q - sh.p;
+        if (!(glm::dot(m, d) <= -kDelta * mlen * (glm::length(d) + size))) return true;
+    }
+    return false;
+}
+
 // The offset of a sample within cell `cell` of an area light (in cell units): the centre on a
 // uniform grid, else seeded jitter.
 inline Uniform2 cell_offset(const Light& light, uint64_t lkey, uint32_t cell) {
