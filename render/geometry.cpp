@@ -66,6 +66,7 @@ struct ClosestHit {
         return false;
     }
     bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
 
 // The walk of an any-hit query: depth first, ended by the first hit.
@@ -81,6 +82,7 @@ struct AnyHit {
 
     int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
     bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
 
 template <int kFilter>
