@@ -26,6 +26,7 @@ using namespace detail;
 template <int kFilter>
 [[gnu::noinline]] void closest_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, Best& best,
                                   Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
@@ -38,6 +39,7 @@ template <int kFilter>
 template <int kFilter>
 [[gnu::noinline]] bool any_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, double tmax,
                               Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
