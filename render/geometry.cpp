@@ -26,6 +26,7 @@ using namespace detail;
 template <int kFilter>
 [[gnu::noinline]] void closest_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, Best& best,
                                   Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
@@ -38,6 +39,7 @@ template <int kFilter>
 template <int kFilter>
 [[gnu::noinline]] bool any_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, double tmax,
                               Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = g.order[k];
         if (!passes<kFilter>(e)) continue;
@@ -66,6 +68,7 @@ struct ClosestHit {
         return false;
     }
     bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
 
 // The walk of an any-hit query: depth first, ended by the first hit.
@@ -81,6 +84,7 @@ struct AnyHit {
 
     int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
     bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
 
 template <int kFilter>

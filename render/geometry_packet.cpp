@@ -120,6 +120,7 @@ struct PacketClosestHit {
 
     int enter(const Bvh4Node& node, uint32_t, float* tn) const { return p.bound4(node, limit_max, tn); }
     bool open(float t) const { return t <= limit_max * RayBoxTest::kWiden; }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 
     bool leaf(const Child& e) {
         const Bvh4Node* nodes = g.nodes.data();

@@ -107,7 +107,9 @@ template <WalkOrder kOrder, class Child>
 //       (any value when the order ignores distances);
 //   bool leaf(const Child& c)     leaf_fn: true ends the walk;
 //   bool open(float t) const      NearestFirst only: a waiting child entered at t may still
-//                                 matter.
+//                                 matter;
+//   void prefetch_leaf(uint32_t first) const   optional: fetch the data of a leaf that will be
+//                                 visited (a hint; it must not change what the query finds).
 template <class Q>
 [[gnu::always_inline]] inline bool walk_bvh(const Bvh4Node* nodes, Q& q, uint64_t& visits) {
     using Child = typename Q::Child;
@@ -119,6 +121,19 @@ template <class Q>
         alignas(16) float tn[4];
         int mask = q.enter(node, index, tn);
         ++visits;
+        // The children to be visited, fetched while the walk goes on: those that wait on the
+        // stack are then in cache when popped (inner nodes; leaves' data when the query says
+        // where it is).
+        for (int m = mask; m != 0; m &= m - 1) {
+            const int i = std::countr_zero(static_cast<unsigned>(m));
+            if (node.count[i] == 0) {
+                const char* p = reinterpret_cast<const char*>(&nodes[node.first[i]]);
+                __builtin_prefetch(p);
+                __builtin_prefetch(p + 64);
+            } else if constexpr (requires { q.prefetch_leaf(node.first[i]); }) {
+                q.prefetch_leaf(node.first[i]);
+            }
+        }
         if constexpr (Q::kOrder == WalkOrder::LeavesFirst) {
             for (int m = mask; m != 0; m &= m - 1) {
                 const int i = std::countr_zero(static_cast<unsigned>(m));
