@@ -190,24 +190,38 @@ Split find_split(const Shared& s, const Range& r, Binning& binning) {
     Split best;
     if (!spread) return best;
 
+    // Two sets of bins, taking the references in turn: consecutive references often fall into
+    // the same bin, and with one set each update would wait for the previous one's stores. Bins
+    // are merged exactly (min, max, integer counts), so the split is the same as with one set.
     union Storage {
         Storage() {}
-        Bin bins[3][kMaxBins];
+        Bin bins[2][3][kMaxBins];
     } storage;
-    auto& bins = storage.bins;
+    auto& bins = storage.bins[0];
+    auto& bins1 = storage.bins[1];
     for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < nb; ++k) bins[a][k] = Bin{Box{}, 0};
-    for (uint32_t i = r.begin; i < r.end; ++i) {
-        const Ref& ref = s.refs[i];
+        for (int k = 0; k < nb; ++k) bins[a][k] = bins1[a][k] = Bin{Box{}, 0};
+    auto add = [&binning](Bin(&set)[3][kMaxBins], const Ref& ref) {
         F4 lo = ref.lo4(), hi = ref.hi4();
         int k[3];
         binning.indices(lo + hi, k);
         for (int a = 0; a < 3; ++a) {
-            Bin& b = bins[a][k[a]];
+            Bin& b = set[a][k[a]];
             b.box.extend(lo, hi);
             ++b.count;
         }
+    };
+    uint32_t i = r.begin;
+    for (; i + 1 < r.end; i += 2) {
+        add(bins, s.refs[i]);
+        add(bins1, s.refs[i + 1]);
     }
+    if (i < r.end) add(bins, s.refs[i]);
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) {
+            bins[a][k].box.extend(bins1[a][k].box);
+            bins[a][k].count += bins1[a][k].count;
+        }
     for (int a = 0; a < 3; ++a) {
         if (!(ch[a] - cl[a] > 0)) continue;
         float right_area[kMaxBins];
@@ -373,21 +387,31 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
 }  // namespace
 
 Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
+    return build_bvh(
+        bounds.size(), [&bounds](uint32_t i) { return bounds[i]; }, options);
+}
+
+Bvh build_bvh(size_t count, const std::function<Bounds3f(uint32_t)>& bound, const BvhOptions& options) {
     Bvh bvh;
-    const uint32_t n = static_cast<uint32_t>(bounds.size());
+    const uint32_t n = static_cast<uint32_t>(count);
     if (n == 0) return bvh;
+    // The references, and the root's bounds in the same pass.
     std::vector<Ref> refs;
     reserve_huge(refs, n);
-    for (uint32_t i = 0; i < n; ++i)
-        refs.push_back(Ref{{bounds[i].lo.x, bounds[i].lo.y, bounds[i].lo.z, std::bit_cast<float>(i)},
-                           {bounds[i].hi.x, bounds[i].hi.y, bounds[i].hi.z, 0.0f}});
+    Range root;
+    root.end = n;
+    for (uint32_t i = 0; i < n; ++i) {
+        const Bounds3f b = bound(i);
+        refs.push_back(
+            Ref{{b.lo.x, b.lo.y, b.lo.z, std::bit_cast<float>(i)}, {b.hi.x, b.hi.y, b.hi.z, 0.0f}});
+        const F4 lo = refs.back().lo4(), hi = refs.back().hi4();
+        root.box.extend(lo, hi);
+        root.cbox.extend_point(lo + hi);
+    }
 
     int threads = options.threads > 0 ? options.threads
                                       : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     Shared s{refs, options, {threads - 1}};
-    Range root;
-    root.end = n;
-    bounds_of(s, root);
 
     // Enough for any tree (fewer than 2n nodes), so that splicing never reallocates; untouched
     // capacity costs no memory. The nodes are a temporary for to_bvh4, hence no shrink_to_fit.

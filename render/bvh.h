@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "render/aabb.h"
@@ -31,6 +32,10 @@ struct Bvh {
 // the builder splits at the object median instead of by SAH.
 inline constexpr int kMaxBvhDepth = 64;
 Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options);
+// The same over `count` primitives whose bounds bound(i) gives, called once for each i in
+// increasing order on the calling thread: callers that can compute bounds (a mesh's triangles
+// from their vertices) need not store them.
+Bvh build_bvh(size_t count, const std::function<Bounds3f(uint32_t)>& bound, const BvhOptions& options);
 
 // Collapses built nodes into the 4-wide traversal tree (see Bvh4Node in aabb.h), in depth-first
 // order; node 0 holds the root's children (or the root itself when it is a leaf).

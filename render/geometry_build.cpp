@@ -23,8 +23,8 @@ struct Builder {
     Geometry::Impl& g;
     bool prototype = false;  // members may inherit their material; no planes, no instances
     int threads = 0;
-    std::vector<Bounds3f> bounds;   // per bounded primitive, canonical order
-    std::vector<uint32_t> entries;  // encoded entries, same order
+    std::vector<Bounds3f> bounds;   // per bounded primitive but triangles, canonical order
+    std::vector<uint32_t> entries;  // encoded entries of every bounded primitive, same order
     std::vector<uint8_t> inherits;  // prototypes: 1 where the primitive inherits its material
     uint32_t next_prim = 0;
     size_t stored = 0, instances = 0;  // for the limits: primitives stored, instances
@@ -43,8 +43,13 @@ struct Builder {
         return material != kInheritMaterial && spec.materials[material].transmission > 0;
     }
 
+    // Triangles' bounds are not stored: finish_bvh takes them from the vertices.
     void add_bounded(PrimKind kind, uint32_t slot, const Bounds3f& b, bool trans) {
         bounds.push_back(b);
+        add_entry(kind, slot, trans);
+    }
+    void add_triangle(uint32_t slot, bool trans) { add_entry(PrimKind::Triangle, slot, trans); }
+    void add_entry(PrimKind kind, uint32_t slot, bool trans) {
         entries.push_back(encode_entry(kind, slot, trans));
         if (prototype) inherits.push_back(shapes[shape_index].material == kInheritMaterial ? 1 : 0);
         ++next_prim;
@@ -179,9 +184,7 @@ void Builder::triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, 
     }
     info.extra = static_cast<uint32_t>(g.tri_extra.size());
     g.tri_extra.push_back(extra);
-    Bounds3f b;
-    for (int i = 0; i < 3; ++i) b.extend(g.verts[base + i]);
-    add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
+    add_triangle(static_cast<uint32_t>(g.tris.size()), trans);
     g.tris.push_back(TriPrim{{base, base + 1, base + 2}, next_prim - 1});
 }
 
@@ -264,11 +267,7 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
             continue;
         }
         if (shape_errors > 0) continue;  // keep validating, but build nothing more
-        Bounds3f b;
-        b.extend(g.verts[i0]);
-        b.extend(g.verts[i1]);
-        b.extend(g.verts[i2]);
-        add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
+        add_triangle(static_cast<uint32_t>(g.tris.size()), trans);
         g.tris.push_back(TriPrim{{i0, i1, i2}, next_prim - 1});
     }
     if (more_errors > 0)
@@ -410,7 +409,17 @@ void Builder::shape(size_t i, bool& limit_reported) {
 void Builder::finish_bvh() {
     BvhOptions opt;
     opt.threads = threads;
-    Bvh bvh = build_bvh(bounds, opt);
+    // Bounds in canonical order: a triangle's from its vertices, the others' stored in turn.
+    size_t next_bounds = 0;
+    const auto bound = [&](uint32_t i) {
+        const uint32_t e = entries[i];
+        if (static_cast<PrimKind>((e >> kKindShift) & 3u) != PrimKind::Triangle) return bounds[next_bounds++];
+        const TriPrim& t = g.tris[e & kSlotMask];
+        Bounds3f b;
+        for (uint32_t v : t.v) b.extend(g.verts[v]);
+        return b;
+    };
+    Bvh bvh = build_bvh(entries.size(), bound, opt);
     g.nodes = to_bvh4(bvh.nodes);
     g.bvh_depth = bvh.depth;
     std::vector<TriPrim> tris;
@@ -475,7 +484,7 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
     else
         g.tris.reserve(n_tris);
     g.verts.reserve(n_verts);
-    reserve_huge(b.bounds, n_bounded);
+    reserve_huge(b.bounds, n_bounded - n_tris);
     reserve_huge(b.entries, n_bounded);
     const size_t errors_before = errors.size();
     bool limit_reported = false;
@@ -483,7 +492,7 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
     if (errors.size() > errors_before) return false;
     g.primitive_count = b.next_prim;
 
-    if (use_bvh && !b.bounds.empty()) {
+    if (use_bvh && !b.entries.empty()) {
         b.finish_bvh();
     } else {
         g.order = std::move(b.entries);

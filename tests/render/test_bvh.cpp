@@ -2,6 +2,7 @@
 // scenes, any-hit agrees with closest-hit, the slab test has no false misses, degenerate inputs
 // build shallow trees, planes stay outside the tree, and the thread count changes nothing.
 #include <catch2/catch.hpp>
+#include <cstring>
 
 #include "geometry_test_util.h"
 #include "render/bvh.h"
@@ -239,4 +240,42 @@ TEST_CASE("R52 the BVH build does not depend on the thread count") {
         require_same(*one, *two, r, kInf, RayFilter::All);
         require_same(*one, *all, r, kInf, RayFilter::All);
     }
+}
+
+TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 threads") {
+    // Enough boxes for subtrees on other threads at several levels, clustered and of mixed
+    // sizes so that the splits are uneven.
+    Rng rng(5252);
+    std::vector<Bounds3f> boxes;
+    for (int i = 0; i < 120000; ++i) {
+        Vec3 c(rng.uniform(0, 100), rng.uniform(0, 30),
+               i % 5 == 0 ? rng.uniform(0, 0.1) : rng.uniform(0, 60));
+        boxes.push_back(Bounds3f::around(c, c + Vec3(rng.log_uniform(-3, 0.5))));
+    }
+    auto tree = [&](int threads) {
+        BvhOptions opt;
+        opt.threads = threads;
+        Bvh bvh = build_bvh(boxes, opt);
+        std::vector<Bvh4Node> wide = to_bvh4(bvh.nodes);
+        return std::make_pair(std::move(bvh), std::move(wide));
+    };
+    auto [one, one4] = tree(1);
+    REQUIRE(one.order.size() == boxes.size());
+    for (int threads : {2, 3}) {
+        INFO(threads << " threads");
+        auto [other, other4] = tree(threads);
+        CHECK(other.depth == one.depth);
+        CHECK(other.order == one.order);
+        REQUIRE(other4.size() == one4.size());
+        CHECK(std::memcmp(other4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
+    }
+    // Bounds given one by one build the same tree as a vector of them.
+    BvhOptions opt;
+    opt.threads = 2;
+    Bvh given = build_bvh(
+        boxes.size(), [&](uint32_t i) { return boxes[i]; }, opt);
+    CHECK(given.order == one.order);
+    const auto given4 = to_bvh4(given.nodes);
+    REQUIRE(given4.size() == one4.size());
+    CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
 }
