@@ -5,10 +5,12 @@
 #include <cmath>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "render/geometry_impl.h"
 #include "render/mesh_file.h"
 #include "render/other_prims.h"
+#include "render/parallel.h"
 
 namespace wsd::render {
 
@@ -410,14 +412,34 @@ void Builder::finish_bvh() {
     BvhOptions opt;
     opt.threads = threads;
     // Bounds in canonical order: a triangle's from its vertices, the others' stored in turn.
-    size_t next_bounds = 0;
-    const auto bound = [&](uint32_t i) {
-        const uint32_t e = entries[i];
-        if (static_cast<PrimKind>((e >> kKindShift) & 3u) != PrimKind::Triangle) return bounds[next_bounds++];
-        const TriPrim& t = g.tris[e & kSlotMask];
-        Bounds3f b;
-        for (uint32_t v : t.v) b.extend(g.verts[v]);
-        return b;
+    // Chunks are bounded in parallel, so each starts at the stored bounds of the entries before it.
+    const auto is_triangle = [&](uint32_t i) {
+        return static_cast<PrimKind>((entries[i] >> kKindShift) & 3u) == PrimKind::Triangle;
+    };
+    const size_t chunks = (entries.size() + kBvhChunk - 1) / kBvhChunk;
+    std::vector<size_t> first_bounds(chunks, 0);
+    if (!bounds.empty()) {
+        ParallelOptions par;
+        par.threads = threads;
+        parallel_for(chunks, par, [&](size_t c, int) {
+            const size_t end = std::min(entries.size(), (c + 1) * kBvhChunk);
+            for (size_t i = c * kBvhChunk; i < end; ++i) first_bounds[c] += is_triangle(uint32_t(i)) ? 0 : 1;
+        });
+        size_t sum = 0;
+        for (size_t& f : first_bounds) sum += std::exchange(f, sum);
+    }
+    const auto bound = [&](uint32_t begin, uint32_t end, Bounds3f* out) {
+        size_t next_bounds = first_bounds[begin / kBvhChunk];
+        for (uint32_t i = begin; i < end; ++i) {
+            if (!is_triangle(i)) {
+                out[i - begin] = bounds[next_bounds++];
+                continue;
+            }
+            const TriPrim& t = g.tris[entries[i] & kSlotMask];
+            Bounds3f b;
+            for (uint32_t v : t.v) b.extend(g.verts[v]);
+            out[i - begin] = b;
+        }
     };
     Bvh bvh = build_bvh(entries.size(), bound, opt);
     g.nodes = to_bvh4(bvh.nodes);

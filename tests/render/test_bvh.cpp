@@ -1,6 +1,7 @@
 // BVH tests (robustness.md section C): the BVH agrees bit for bit with brute force on random
 // scenes, any-hit agrees with closest-hit, the slab test has no false misses, degenerate inputs
 // build shallow trees, planes stay outside the tree, and the thread count changes nothing.
+#include <atomic>
 #include <catch2/catch.hpp>
 #include <cstring>
 
@@ -269,11 +270,25 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
         REQUIRE(other4.size() == one4.size());
         CHECK(std::memcmp(other4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
     }
-    // Bounds given one by one build the same tree as a vector of them.
+    // Bounds given chunk by chunk build the same tree as a vector of them, each chunk asked once.
     BvhOptions opt;
     opt.threads = 2;
+    // (Catch's assertions are not thread-safe: the callback counts, the test checks after.)
+    std::vector<std::atomic<int>> asked((boxes.size() + kBvhChunk - 1) / kBvhChunk);
+    std::atomic<int> misaligned{0};
     Bvh given = build_bvh(
-        boxes.size(), [&](uint32_t i) { return boxes[i]; }, opt);
+        boxes.size(),
+        [&](uint32_t begin, uint32_t end, Bounds3f* out) {
+            if (begin % kBvhChunk != 0 || end != std::min<size_t>(boxes.size(), begin + kBvhChunk)) {
+                ++misaligned;
+                return;
+            }
+            ++asked[begin / kBvhChunk];
+            for (uint32_t i = begin; i < end; ++i) out[i - begin] = boxes[i];
+        },
+        opt);
+    CHECK(misaligned.load() == 0);
+    for (const auto& a : asked) CHECK(a.load() == 1);
     CHECK(given.order == one.order);
     const auto given4 = to_bvh4(given.nodes);
     REQUIRE(given4.size() == one4.size());
