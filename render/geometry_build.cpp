@@ -230,55 +230,86 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     for (size_t i = 0; i < m.normals.size(); ++i)
         if (!is_finite(m.normals[i])) return error("mesh normal " + std::to_string(i) + " is not finite");
 
+    // Vertices and faces are checked in fixed chunks on every thread; each chunk keeps its first
+    // face errors in face order, and the chunks' are reported in chunk order: the same messages,
+    // in the same order, as one pass over the faces.
+    constexpr size_t kChunk = size_t{1} << 14;
+    const auto for_chunks = [this](size_t count, const std::function<void(size_t)>& body) {
+        if (count == 1) return body(0);  // a small mesh: no thread to start
+        ParallelOptions par;
+        par.threads = threads;
+        parallel_for(count, par, [&body](size_t c, int) { body(c); });
+    };
     const uint32_t base = static_cast<uint32_t>(g.verts.size());
     g.verts.resize(base + nv);
     std::vector<uint8_t> bad_vertex(nv, 0);
-    for (size_t i = 0; i < nv; ++i) {
-        Vec3f w;
-        bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
-        g.verts[base + i] = ok ? w : Vec3f(0);
-        bad_vertex[i] = ok ? 0 : 1;
-    }
-    int face_errors = 0, more_errors = 0;
-    auto face_error = [&](size_t f, const std::string& what) {
-        if (face_errors < kMaxFaceErrorsPerMesh) {
-            error(face_name(m, f) + ": " + what, static_cast<long>(f));
-            ++face_errors;
-        } else {
-            ++more_errors;
+    for_chunks((nv + kChunk - 1) / kChunk, [&](size_t c) {
+        for (size_t i = c * kChunk; i < std::min(nv, (c + 1) * kChunk); ++i) {
+            Vec3f w;
+            bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
+            g.verts[base + i] = ok ? w : Vec3f(0);
+            bad_vertex[i] = ok ? 0 : 1;
         }
+    });
+    struct FaceErrors {
+        std::vector<std::pair<size_t, std::string>> first;  // at most kMaxFaceErrorsPerMesh
+        size_t count = 0;
     };
-    const size_t tri_base = g.tris.size();
-    for (size_t f = 0; f < m.faces.size(); ++f) {
-        const glm::uvec3& face = m.faces[f];
-        if (face.x >= nv || face.y >= nv || face.z >= nv) {
-            face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
-                              (nv == 1 ? " vertex)" : " vertices)"));
-            continue;
+    const size_t nf = m.faces.size();
+    std::vector<FaceErrors> chunk_errors((nf + kChunk - 1) / kChunk);
+    for_chunks(chunk_errors.size(), [&](size_t c) {
+        FaceErrors& fe = chunk_errors[c];
+        auto face_error = [&fe](size_t f, std::string what) {
+            if (fe.first.size() < kMaxFaceErrorsPerMesh) fe.first.emplace_back(f, std::move(what));
+            ++fe.count;
+        };
+        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+            const glm::uvec3& face = m.faces[f];
+            if (face.x >= nv || face.y >= nv || face.z >= nv) {
+                face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
+                                  (nv == 1 ? " vertex)" : " vertices)"));
+                continue;
+            }
+            if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
+                size_t k = bad_vertex[face.x] ? face.x : (bad_vertex[face.y] ? face.y : face.z);
+                face_error(f, is_finite(m.vertices[k])
+                                  ? "vertex " + std::to_string(k) + " is out of range after the transform"
+                                  : "vertex " + std::to_string(k) + " has a non-finite coordinate");
+                continue;
+            }
+            if (degenerate(base + face.x, base + face.y, base + face.z))
+                face_error(f, "degenerate triangle: its vertices do not span an area");
         }
-        if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
-            size_t k = bad_vertex[face.x] ? face.x : (bad_vertex[face.y] ? face.y : face.z);
-            face_error(f, is_finite(m.vertices[k])
-                              ? "vertex " + std::to_string(k) + " is out of range after the transform"
-                              : "vertex " + std::to_string(k) + " has a non-finite coordinate");
-            continue;
-        }
-        uint32_t i0 = base + face.x, i1 = base + face.y, i2 = base + face.z;
-        if (degenerate(i0, i1, i2)) {
-            face_error(f, "degenerate triangle: its vertices do not span an area");
-            continue;
-        }
-        if (shape_errors > 0) continue;  // keep validating, but build nothing more
-        add_triangle(static_cast<uint32_t>(g.tris.size()), trans);
-        g.tris.push_back(TriPrim{{i0, i1, i2}, next_prim - 1});
+    });
+    size_t total = 0, reported = 0;
+    for (const FaceErrors& fe : chunk_errors) {
+        total += fe.count;
+        for (const auto& [f, what] : fe.first)
+            if (reported < kMaxFaceErrorsPerMesh) {
+                error(face_name(m, f) + ": " + what, static_cast<long>(f));
+                ++reported;
+            }
     }
+    const size_t more_errors = total - reported;
     if (more_errors > 0)
         error("mesh has " + std::to_string(more_errors) +
               (more_errors == 1 ? " more invalid face" : " more invalid faces"));
-    if (shape_errors > 0) {
-        g.tris.resize(tri_base);
-        return;
-    }
+    if (shape_errors > 0) return;
+    // Every face is valid: one triangle each, written by index.
+    const size_t tri_base = g.tris.size(), entry_base = entries.size();
+    const uint32_t prim_base = next_prim;
+    g.tris.resize(tri_base + nf);
+    entries.resize(entry_base + nf);
+    if (prototype) inherits.resize(entry_base + nf, shapes[shape_index].material == kInheritMaterial ? 1 : 0);
+    next_prim += static_cast<uint32_t>(nf);
+    for_chunks(chunk_errors.size(), [&](size_t c) {
+        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+            const glm::uvec3& face = m.faces[f];
+            const auto slot = static_cast<uint32_t>(tri_base + f);
+            entries[entry_base + f] = encode_entry(PrimKind::Triangle, slot, trans);
+            g.tris[slot] = TriPrim{{base + face.x, base + face.y, base + face.z}, prim_base + uint32_t(f)};
+        }
+    });
     info.vertex_offset = base;
     if (!m.normals.empty() || !m.uvs.empty()) info.mesh = s.mesh;
 }

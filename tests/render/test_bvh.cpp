@@ -294,3 +294,42 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
     REQUIRE(given4.size() == one4.size());
     CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
 }
+
+TEST_CASE("R52 a large mesh's bad faces are reported in face order, whatever the thread count") {
+    // Bad faces in several of the chunks that are checked in parallel, the first in a late one.
+    auto m = std::make_shared<MeshData>();
+    const uint32_t side = 200;
+    for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x) m->vertices.push_back({x, y, 0});
+    for (uint32_t y = 0; y + 1 < side; ++y)
+        for (uint32_t x = 0; x + 1 < side; ++x) {
+            const uint32_t v = y * side + x;
+            m->faces.push_back({v, v + 1, v + side});
+            m->faces.push_back({v + 1, v + side + 1, v + side});
+        }
+    REQUIRE(m->faces.size() > 2 * 16384);
+    std::vector<size_t> bad;
+    for (size_t f = 17000; f < m->faces.size(); f += 1500) bad.push_back(f);
+    REQUIRE(bad.size() > 12);
+    for (size_t i = 0; i < bad.size(); ++i)
+        m->faces[bad[i]] = i % 2 ? glm::uvec3(0, 0, 1) : glm::uvec3(0, 1, side * side + 7);
+    const SceneSpec spec = scene_of({mesh(m)});
+    auto messages = [&](int threads) {
+        std::vector<SpecError> errors;
+        CHECK_FALSE(Geometry::build(spec, errors, true, threads));
+        std::vector<std::pair<std::string, long>> out;
+        for (const SpecError& e : errors) out.emplace_back(e.message, e.face);
+        return out;
+    };
+    const auto one = messages(1);
+    REQUIRE(one.size() == 11);
+    for (size_t i = 0; i < 10; ++i) {
+        INFO(one[i].first);
+        CHECK(one[i].second == static_cast<long>(bad[i]));
+        CHECK(one[i].first.rfind("face " + std::to_string(bad[i]) + ": ", 0) == 0);
+        CHECK(one[i].first.find(i % 2 ? "degenerate" : "out of range") != std::string::npos);
+    }
+    CHECK(one[10].first == "mesh has " + std::to_string(bad.size() - 10) + " more invalid faces");
+    CHECK(messages(2) == one);
+    CHECK(messages(3) == one);
+}
