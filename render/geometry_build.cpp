@@ -2,6 +2,7 @@
 // degenerate triangles, bad indices, singular transforms, the 2^24 primitive limit), converts it
 // to world-space primitives, builds the BVH over the bounded ones and stores them in leaf order.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <thread>
@@ -475,40 +476,53 @@ void Builder::finish_bvh() {
     Bvh bvh = build_bvh(entries.size(), bound, opt);
     g.nodes = to_bvh4(bvh.nodes);
     g.bvh_depth = bvh.depth;
-    std::vector<TriPrim> tris;
-    std::vector<SpherePrim> spheres;
-    std::vector<BoxPrim> boxes;
-    tris.reserve(g.tris.size());
-    spheres.reserve(g.spheres.size());
-    boxes.reserve(g.boxes.size());
+    // Stored in leaf order in fixed chunks on every thread: each chunk's first slot of each kind
+    // is the count of that kind in the chunks before it.
     if (prototype) g.inherits.resize(inherits.size());
     g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
-    for (size_t k = 0; k < g.order.size(); ++k) {
-        const uint32_t from = g.order[k];
-        uint32_t e = entries[from];
-        uint32_t slot = e & kSlotMask;
-        auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
-        uint32_t ns = 0;
-        switch (kind) {
-            case PrimKind::Triangle:
-                ns = static_cast<uint32_t>(tris.size());
-                tris.push_back(g.tris[slot]);
-                break;
-            case PrimKind::Sphere:
-                ns = static_cast<uint32_t>(spheres.size());
-                spheres.push_back(g.spheres[slot]);
-                break;
-            case PrimKind::Box:
-                ns = static_cast<uint32_t>(boxes.size());
-                boxes.push_back(g.boxes[slot]);
-                break;
-            case PrimKind::Other:
-                ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
-                break;
+    const auto kind_of = [&](uint32_t from) {
+        return static_cast<PrimKind>((entries[from] >> kKindShift) & 3u);
+    };
+    const size_t n = g.order.size(), leaf_chunks = (n + kBvhChunk - 1) / kBvhChunk;
+    std::vector<std::array<uint32_t, 4>> first(leaf_chunks, std::array<uint32_t, 4>{});
+    ParallelOptions par;
+    par.threads = threads;
+    parallel_for(leaf_chunks, par, [&](size_t c, int) {
+        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k)
+            ++first[c][static_cast<size_t>(kind_of(g.order[k]))];
+    });
+    std::array<uint32_t, 4> sum{};
+    for (auto& f : first)
+        for (size_t kind = 0; kind < 4; ++kind) sum[kind] += std::exchange(f[kind], sum[kind]);
+    std::vector<TriPrim> tris(g.tris.size());
+    std::vector<SpherePrim> spheres(g.spheres.size());
+    std::vector<BoxPrim> boxes(g.boxes.size());
+    parallel_for(leaf_chunks, par, [&](size_t c, int) {
+        std::array<uint32_t, 4> next = first[c];
+        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k) {
+            const uint32_t from = g.order[k];
+            const uint32_t e = entries[from];
+            const uint32_t slot = e & kSlotMask;
+            const PrimKind kind = kind_of(from);
+            uint32_t ns = next[static_cast<size_t>(kind)]++;
+            switch (kind) {
+                case PrimKind::Triangle:
+                    tris[ns] = g.tris[slot];
+                    break;
+                case PrimKind::Sphere:
+                    spheres[ns] = g.spheres[slot];
+                    break;
+                case PrimKind::Box:
+                    boxes[ns] = g.boxes[slot];
+                    break;
+                case PrimKind::Other:
+                    ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
+                    break;
+            }
+            g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
+            if (prototype) g.inherits[k] = inherits[from];
         }
-        g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
-        if (prototype) g.inherits[k] = inherits[from];
-    }
+    });
     g.tris = std::move(tris);
     g.spheres = std::move(spheres);
     g.boxes = std::move(boxes);
