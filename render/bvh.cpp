@@ -5,6 +5,8 @@
 #include "render/bvh.h"
 
 #include <algorithm>
+
+#include "render/parallel.h"
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -76,6 +78,9 @@ struct F4 {
 // A primitive reference: its bounds, with its id in the fourth lane of lo (boxes ignore that
 // lane). Centroids are kept doubled (lo + hi) throughout; only their order matters.
 struct alignas(16) Ref {
+    Ref() {}  // uninitialised: the references are written in parallel, not zeroed first
+    Ref(const Bounds3f& b, uint32_t id)
+        : lo{b.lo.x, b.lo.y, b.lo.z, std::bit_cast<float>(id)}, hi{b.hi.x, b.hi.y, b.hi.z, 0.0f} {}
     float lo[4];
     float hi[4];  // hi[3] == 0
     // The bounds as vectors. The id's bits read as a float are a denormal, and arithmetic on
@@ -121,6 +126,11 @@ struct Range {
 constexpr uint32_t kSubtreeMin = 1u << 14;
 constexpr int kSahDepthCap = 40;  // past it, object-median splits keep the depth < 64
 constexpr int kMaxBins = 32;
+// Ranges of at least kChunkedBinMin references are binned in kBinChunks fixed chunks whose bins
+// are merged in chunk order, on two threads when one is idle: the same chunks and the same merge
+// whatever the thread count, so the split (and every bound, down to the sign of a zero) is too.
+constexpr uint32_t kChunkedBinMin = 1u << 16;
+constexpr uint32_t kBinChunks = 32;
 
 struct Shared {
     std::vector<Ref>& refs;
@@ -171,8 +181,63 @@ struct Bin {
     uint32_t count;
 };
 
+struct BinSet {
+    Bin bins[3][kMaxBins];
+    Bin* operator[](int a) { return bins[a]; }
+    const Bin* operator[](int a) const { return bins[a]; }
+};
+
+void merge_bins(BinSet& into, const BinSet& from, int nb) {
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) {
+            into[a][k].box.extend(from[a][k].box);
+            into[a][k].count += from[a][k].count;
+        }
+}
+
+// Bins references [begin, end) into `out` (its first binning.nb bins per axis).
+void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t end, BinSet& out) {
+    // Two sets of bins, taking the references in turn: consecutive references often fall into
+    // the same bin, and with one set each update would wait for the previous one's stores. Bins
+    // are merged exactly (min, max, integer counts), so the split is the same as with one set.
+    const int nb = binning.nb;
+    BinSet other;
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
+    auto add = [&binning](BinSet& set, const Ref& ref) {
+        F4 lo = ref.lo4(), hi = ref.hi4();
+        int k[3];
+        binning.indices(lo + hi, k);
+        for (int a = 0; a < 3; ++a) {
+            Bin& b = set[a][k[a]];
+            b.box.extend(lo, hi);
+            ++b.count;
+        }
+    };
+    uint32_t i = begin;
+    for (; i + 1 < end; i += 2) {
+        add(out, s.refs[i]);
+        add(other, s.refs[i + 1]);
+    }
+    if (i < end) add(out, s.refs[i]);
+    merge_bins(out, other, nb);
+}
+
+ParallelOptions with_threads(int threads) {
+    ParallelOptions o;
+    o.threads = threads;
+    return o;
+}
+
+// Claims an idle thread, if there is one.
+bool claim_thread(Shared& s) {
+    if (s.idle.fetch_sub(1) > 0) return true;
+    s.idle.fetch_add(1);
+    return false;
+}
+
 // Best SAH split over all three axes (axis -1 when the centroids do not spread).
-Split find_split(const Shared& s, const Range& r, Binning& binning) {
+Split find_split(Shared& s, const Range& r, Binning& binning) {
     const uint32_t n = r.end - r.begin;
     const int nb = std::min({s.opt.bins, kMaxBins, static_cast<int>(n < 4 ? 4 : n)});
     binning.nb = nb;
@@ -190,23 +255,24 @@ Split find_split(const Shared& s, const Range& r, Binning& binning) {
     Split best;
     if (!spread) return best;
 
-    union Storage {
-        Storage() {}
-        Bin bins[3][kMaxBins];
-    } storage;
-    auto& bins = storage.bins;
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < nb; ++k) bins[a][k] = Bin{Box{}, 0};
-    for (uint32_t i = r.begin; i < r.end; ++i) {
-        const Ref& ref = s.refs[i];
-        F4 lo = ref.lo4(), hi = ref.hi4();
-        int k[3];
-        binning.indices(lo + hi, k);
-        for (int a = 0; a < 3; ++a) {
-            Bin& b = bins[a][k[a]];
-            b.box.extend(lo, hi);
-            ++b.count;
+    BinSet bins;
+    if (n < kChunkedBinMin) {
+        bin_range(s, binning, r.begin, r.end, bins);
+    } else {
+        std::vector<BinSet> chunk(kBinChunks);
+        auto run = [&](size_t c) {
+            const uint32_t b = r.begin + static_cast<uint32_t>(uint64_t{n} * c / kBinChunks);
+            const uint32_t e = r.begin + static_cast<uint32_t>(uint64_t{n} * (c + 1) / kBinChunks);
+            bin_range(s, binning, b, e, chunk[c]);
+        };
+        if (claim_thread(s)) {
+            parallel_for(kBinChunks, with_threads(2), [&](size_t c, int) { run(c); });
+            s.idle.fetch_add(1);
+        } else {
+            for (size_t c = 0; c < kBinChunks; ++c) run(c);
         }
+        bins = chunk[0];
+        for (size_t c = 1; c < kBinChunks; ++c) merge_bins(bins, chunk[c], nb);
     }
     for (int a = 0; a < 3; ++a) {
         if (!(ch[a] - cl[a] > 0)) continue;
@@ -275,13 +341,6 @@ void median_split(Shared& s, const Range& r, Range& left, Range& right) {
 }
 
 void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth);
-
-// Claims an idle thread, if there is one.
-bool claim_thread(Shared& s) {
-    if (s.idle.fetch_sub(1) > 0) return true;
-    s.idle.fetch_add(1);
-    return false;
-}
 
 void splice(Task& task, uint32_t node, Task& sub) {
     uint32_t base = static_cast<uint32_t>(task.nodes.size());
@@ -373,21 +432,51 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
 }  // namespace
 
 Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
+    return build_bvh(
+        bounds.size(),
+        [&bounds](uint32_t begin, uint32_t end, Bounds3f* out) {
+            std::copy(bounds.begin() + begin, bounds.begin() + end, out);
+        },
+        options);
+}
+
+Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options) {
     Bvh bvh;
-    const uint32_t n = static_cast<uint32_t>(bounds.size());
+    const uint32_t n = static_cast<uint32_t>(count);
     if (n == 0) return bvh;
+    const int threads = thread_count(options.threads);
+    ParallelOptions par;
+    par.threads = threads;
+    // The references, in fixed chunks on every thread, with each chunk's bounds and centroid
+    // bounds; those are merged in chunk order.
     std::vector<Ref> refs;
     reserve_huge(refs, n);
-    for (uint32_t i = 0; i < n; ++i)
-        refs.push_back(Ref{{bounds[i].lo.x, bounds[i].lo.y, bounds[i].lo.z, std::bit_cast<float>(i)},
-                           {bounds[i].hi.x, bounds[i].hi.y, bounds[i].hi.z, 0.0f}});
-
-    int threads = options.threads > 0 ? options.threads
-                                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    Shared s{refs, options, {threads - 1}};
+    refs.resize(n);
+    const size_t chunks = (size_t{n} + kBvhChunk - 1) / kBvhChunk;
+    std::vector<Range> chunk_bounds(chunks);
+    std::vector<std::vector<Bounds3f>> scratch(static_cast<size_t>(threads));
+    parallel_for(chunks, par, [&](size_t c, int worker) {
+        const uint32_t begin = static_cast<uint32_t>(c * kBvhChunk);
+        const uint32_t end = std::min(n, begin + kBvhChunk);
+        std::vector<Bounds3f>& b = scratch[static_cast<size_t>(worker)];
+        b.resize(kBvhChunk);
+        bounds(begin, end, b.data());
+        Range& cb = chunk_bounds[c];
+        for (uint32_t i = begin; i < end; ++i) {
+            refs[i] = Ref(b[i - begin], i);
+            const F4 lo = refs[i].lo4(), hi = refs[i].hi4();
+            cb.box.extend(lo, hi);
+            cb.cbox.extend_point(lo + hi);
+        }
+    });
     Range root;
     root.end = n;
-    bounds_of(s, root);
+    for (const Range& cb : chunk_bounds) {
+        root.box.extend(cb.box);
+        root.cbox.extend(cb.cbox);
+    }
+
+    Shared s{refs, options, {threads - 1}};
 
     // Enough for any tree (fewer than 2n nodes), so that splicing never reallocates; untouched
     // capacity costs no memory. The nodes are a temporary for to_bvh4, hence no shrink_to_fit.
@@ -398,8 +487,12 @@ Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options) {
 
     bvh.nodes = std::move(task.nodes);
     bvh.depth = task.depth;
-    bvh.order.reserve(n);  // becomes Geometry's order: see prefer_huge_pages
-    for (uint32_t i = 0; i < n; ++i) bvh.order.push_back(refs[i].id());
+    bvh.order.resize(n);  // becomes Geometry's order: see prefer_huge_pages
+    parallel_for(chunks, par, [&](size_t c, int) {
+        const uint32_t begin = static_cast<uint32_t>(c * kBvhChunk);
+        const uint32_t end = std::min(n, begin + kBvhChunk);
+        for (uint32_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
+    });
     return bvh;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "render/aabb.h"
@@ -31,6 +32,14 @@ struct Bvh {
 // the builder splits at the object median instead of by SAH.
 inline constexpr int kMaxBvhDepth = 64;
 Bvh build_bvh(const std::vector<Bounds3f>& bounds, const BvhOptions& options);
+// The same over `count` primitives whose bounds the caller writes, chunk by chunk, so that
+// callers that can compute bounds (a mesh's triangles from their vertices) need not store them:
+// bounds(begin, end, out) writes those of primitives [begin, end) to out[0, end - begin). It is
+// called once for each chunk [k * kBvhChunk, min(count, (k + 1) * kBvhChunk)), in any order and
+// from several threads at once.
+inline constexpr uint32_t kBvhChunk = 1u << 14;
+using BvhBoundsFn = std::function<void(uint32_t begin, uint32_t end, Bounds3f* out)>;
+Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options);
 
 // Collapses built nodes into the 4-wide traversal tree (see Bvh4Node in aabb.h), in depth-first
 // order; node 0 holds the root's children (or the root itself when it is a leaf).

@@ -2,13 +2,16 @@
 // degenerate triangles, bad indices, singular transforms, the 2^24 primitive limit), converts it
 // to world-space primitives, builds the BVH over the bounded ones and stores them in leaf order.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "render/geometry_impl.h"
 #include "render/mesh_file.h"
 #include "render/other_prims.h"
+#include "render/parallel.h"
 
 namespace wsd::render {
 
@@ -23,8 +26,8 @@ struct Builder {
     Geometry::Impl& g;
     bool prototype = false;  // members may inherit their material; no planes, no instances
     int threads = 0;
-    std::vector<Bounds3f> bounds;   // per bounded primitive, canonical order
-    std::vector<uint32_t> entries;  // encoded entries, same order
+    std::vector<Bounds3f> bounds;   // per bounded primitive but triangles, canonical order
+    std::vector<uint32_t> entries;  // encoded entries of every bounded primitive, same order
     std::vector<uint8_t> inherits;  // prototypes: 1 where the primitive inherits its material
     uint32_t next_prim = 0;
     size_t stored = 0, instances = 0;  // for the limits: primitives stored, instances
@@ -43,8 +46,13 @@ struct Builder {
         return material != kInheritMaterial && spec.materials[material].transmission > 0;
     }
 
+    // Triangles' bounds are not stored: finish_bvh takes them from the vertices.
     void add_bounded(PrimKind kind, uint32_t slot, const Bounds3f& b, bool trans) {
         bounds.push_back(b);
+        add_entry(kind, slot, trans);
+    }
+    void add_triangle(uint32_t slot, bool trans) { add_entry(PrimKind::Triangle, slot, trans); }
+    void add_entry(PrimKind kind, uint32_t slot, bool trans) {
         entries.push_back(encode_entry(kind, slot, trans));
         if (prototype) inherits.push_back(shapes[shape_index].material == kInheritMaterial ? 1 : 0);
         ++next_prim;
@@ -179,9 +187,7 @@ void Builder::triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, 
     }
     info.extra = static_cast<uint32_t>(g.tri_extra.size());
     g.tri_extra.push_back(extra);
-    Bounds3f b;
-    for (int i = 0; i < 3; ++i) b.extend(g.verts[base + i]);
-    add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
+    add_triangle(static_cast<uint32_t>(g.tris.size()), trans);
     g.tris.push_back(TriPrim{{base, base + 1, base + 2}, next_prim - 1});
 }
 
@@ -225,59 +231,86 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     for (size_t i = 0; i < m.normals.size(); ++i)
         if (!is_finite(m.normals[i])) return error("mesh normal " + std::to_string(i) + " is not finite");
 
+    // Vertices and faces are checked in fixed chunks on every thread; each chunk keeps its first
+    // face errors in face order, and the chunks' are reported in chunk order: the same messages,
+    // in the same order, as one pass over the faces.
+    constexpr size_t kChunk = size_t{1} << 14;
+    const auto for_chunks = [this](size_t count, const std::function<void(size_t)>& body) {
+        if (count == 1) return body(0);  // a small mesh: no thread to start
+        ParallelOptions par;
+        par.threads = threads;
+        parallel_for(count, par, [&body](size_t c, int) { body(c); });
+    };
     const uint32_t base = static_cast<uint32_t>(g.verts.size());
     g.verts.resize(base + nv);
     std::vector<uint8_t> bad_vertex(nv, 0);
-    for (size_t i = 0; i < nv; ++i) {
-        Vec3f w;
-        bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
-        g.verts[base + i] = ok ? w : Vec3f(0);
-        bad_vertex[i] = ok ? 0 : 1;
-    }
-    int face_errors = 0, more_errors = 0;
-    auto face_error = [&](size_t f, const std::string& what) {
-        if (face_errors < kMaxFaceErrorsPerMesh) {
-            error(face_name(m, f) + ": " + what, static_cast<long>(f));
-            ++face_errors;
-        } else {
-            ++more_errors;
+    for_chunks((nv + kChunk - 1) / kChunk, [&](size_t c) {
+        for (size_t i = c * kChunk; i < std::min(nv, (c + 1) * kChunk); ++i) {
+            Vec3f w;
+            bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
+            g.verts[base + i] = ok ? w : Vec3f(0);
+            bad_vertex[i] = ok ? 0 : 1;
         }
+    });
+    struct FaceErrors {
+        std::vector<std::pair<size_t, std::string>> first;  // at most kMaxFaceErrorsPerMesh
+        size_t count = 0;
     };
-    const size_t tri_base = g.tris.size();
-    for (size_t f = 0; f < m.faces.size(); ++f) {
-        const glm::uvec3& face = m.faces[f];
-        if (face.x >= nv || face.y >= nv || face.z >= nv) {
-            face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
-                              (nv == 1 ? " vertex)" : " vertices)"));
-            continue;
+    const size_t nf = m.faces.size();
+    std::vector<FaceErrors> chunk_errors((nf + kChunk - 1) / kChunk);
+    for_chunks(chunk_errors.size(), [&](size_t c) {
+        FaceErrors& fe = chunk_errors[c];
+        auto face_error = [&fe](size_t f, std::string what) {
+            if (fe.first.size() < kMaxFaceErrorsPerMesh) fe.first.emplace_back(f, std::move(what));
+            ++fe.count;
+        };
+        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+            const glm::uvec3& face = m.faces[f];
+            if (face.x >= nv || face.y >= nv || face.z >= nv) {
+                face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
+                                  (nv == 1 ? " vertex)" : " vertices)"));
+                continue;
+            }
+            if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
+                size_t k = bad_vertex[face.x] ? face.x : (bad_vertex[face.y] ? face.y : face.z);
+                face_error(f, is_finite(m.vertices[k])
+                                  ? "vertex " + std::to_string(k) + " is out of range after the transform"
+                                  : "vertex " + std::to_string(k) + " has a non-finite coordinate");
+                continue;
+            }
+            if (degenerate(base + face.x, base + face.y, base + face.z))
+                face_error(f, "degenerate triangle: its vertices do not span an area");
         }
-        if (bad_vertex[face.x] || bad_vertex[face.y] || bad_vertex[face.z]) {
-            size_t k = bad_vertex[face.x] ? face.x : (bad_vertex[face.y] ? face.y : face.z);
-            face_error(f, is_finite(m.vertices[k])
-                              ? "vertex " + std::to_string(k) + " is out of range after the transform"
-                              : "vertex " + std::to_string(k) + " has a non-finite coordinate");
-            continue;
-        }
-        uint32_t i0 = base + face.x, i1 = base + face.y, i2 = base + face.z;
-        if (degenerate(i0, i1, i2)) {
-            face_error(f, "degenerate triangle: its vertices do not span an area");
-            continue;
-        }
-        if (shape_errors > 0) continue;  // keep validating, but build nothing more
-        Bounds3f b;
-        b.extend(g.verts[i0]);
-        b.extend(g.verts[i1]);
-        b.extend(g.verts[i2]);
-        add_bounded(PrimKind::Triangle, static_cast<uint32_t>(g.tris.size()), b, trans);
-        g.tris.push_back(TriPrim{{i0, i1, i2}, next_prim - 1});
+    });
+    size_t total = 0, reported = 0;
+    for (const FaceErrors& fe : chunk_errors) {
+        total += fe.count;
+        for (const auto& [f, what] : fe.first)
+            if (reported < kMaxFaceErrorsPerMesh) {
+                error(face_name(m, f) + ": " + what, static_cast<long>(f));
+                ++reported;
+            }
     }
+    const size_t more_errors = total - reported;
     if (more_errors > 0)
         error("mesh has " + std::to_string(more_errors) +
               (more_errors == 1 ? " more invalid face" : " more invalid faces"));
-    if (shape_errors > 0) {
-        g.tris.resize(tri_base);
-        return;
-    }
+    if (shape_errors > 0) return;
+    // Every face is valid: one triangle each, written by index.
+    const size_t tri_base = g.tris.size(), entry_base = entries.size();
+    const uint32_t prim_base = next_prim;
+    g.tris.resize(tri_base + nf);
+    entries.resize(entry_base + nf);
+    if (prototype) inherits.resize(entry_base + nf, shapes[shape_index].material == kInheritMaterial ? 1 : 0);
+    next_prim += static_cast<uint32_t>(nf);
+    for_chunks(chunk_errors.size(), [&](size_t c) {
+        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+            const glm::uvec3& face = m.faces[f];
+            const auto slot = static_cast<uint32_t>(tri_base + f);
+            entries[entry_base + f] = encode_entry(PrimKind::Triangle, slot, trans);
+            g.tris[slot] = TriPrim{{base + face.x, base + face.y, base + face.z}, prim_base + uint32_t(f)};
+        }
+    });
     info.vertex_offset = base;
     if (!m.normals.empty() || !m.uvs.empty()) info.mesh = s.mesh;
 }
@@ -410,43 +443,86 @@ void Builder::shape(size_t i, bool& limit_reported) {
 void Builder::finish_bvh() {
     BvhOptions opt;
     opt.threads = threads;
-    Bvh bvh = build_bvh(bounds, opt);
+    // Bounds in canonical order: a triangle's from its vertices, the others' stored in turn.
+    // Chunks are bounded in parallel, so each starts at the stored bounds of the entries before it.
+    const auto is_triangle = [&](uint32_t i) {
+        return static_cast<PrimKind>((entries[i] >> kKindShift) & 3u) == PrimKind::Triangle;
+    };
+    const size_t chunks = (entries.size() + kBvhChunk - 1) / kBvhChunk;
+    std::vector<size_t> first_bounds(chunks, 0);
+    if (!bounds.empty()) {
+        ParallelOptions par;
+        par.threads = threads;
+        parallel_for(chunks, par, [&](size_t c, int) {
+            const size_t end = std::min(entries.size(), (c + 1) * kBvhChunk);
+            for (size_t i = c * kBvhChunk; i < end; ++i) first_bounds[c] += is_triangle(uint32_t(i)) ? 0 : 1;
+        });
+        size_t sum = 0;
+        for (size_t& f : first_bounds) sum += std::exchange(f, sum);
+    }
+    const auto bound = [&](uint32_t begin, uint32_t end, Bounds3f* out) {
+        size_t next_bounds = first_bounds[begin / kBvhChunk];
+        for (uint32_t i = begin; i < end; ++i) {
+            if (!is_triangle(i)) {
+                out[i - begin] = bounds[next_bounds++];
+                continue;
+            }
+            const TriPrim& t = g.tris[entries[i] & kSlotMask];
+            Bounds3f b;
+            for (uint32_t v : t.v) b.extend(g.verts[v]);
+            out[i - begin] = b;
+        }
+    };
+    Bvh bvh = build_bvh(entries.size(), bound, opt);
     g.nodes = to_bvh4(bvh.nodes);
     g.bvh_depth = bvh.depth;
-    std::vector<TriPrim> tris;
-    std::vector<SpherePrim> spheres;
-    std::vector<BoxPrim> boxes;
-    tris.reserve(g.tris.size());
-    spheres.reserve(g.spheres.size());
-    boxes.reserve(g.boxes.size());
+    // Stored in leaf order in fixed chunks on every thread: each chunk's first slot of each kind
+    // is the count of that kind in the chunks before it.
     if (prototype) g.inherits.resize(inherits.size());
     g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
-    for (size_t k = 0; k < g.order.size(); ++k) {
-        const uint32_t from = g.order[k];
-        uint32_t e = entries[from];
-        uint32_t slot = e & kSlotMask;
-        auto kind = static_cast<PrimKind>((e >> kKindShift) & 3u);
-        uint32_t ns = 0;
-        switch (kind) {
-            case PrimKind::Triangle:
-                ns = static_cast<uint32_t>(tris.size());
-                tris.push_back(g.tris[slot]);
-                break;
-            case PrimKind::Sphere:
-                ns = static_cast<uint32_t>(spheres.size());
-                spheres.push_back(g.spheres[slot]);
-                break;
-            case PrimKind::Box:
-                ns = static_cast<uint32_t>(boxes.size());
-                boxes.push_back(g.boxes[slot]);
-                break;
-            case PrimKind::Other:
-                ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
-                break;
+    const auto kind_of = [&](uint32_t from) {
+        return static_cast<PrimKind>((entries[from] >> kKindShift) & 3u);
+    };
+    const size_t n = g.order.size(), leaf_chunks = (n + kBvhChunk - 1) / kBvhChunk;
+    std::vector<std::array<uint32_t, 4>> first(leaf_chunks, std::array<uint32_t, 4>{});
+    ParallelOptions par;
+    par.threads = threads;
+    parallel_for(leaf_chunks, par, [&](size_t c, int) {
+        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k)
+            ++first[c][static_cast<size_t>(kind_of(g.order[k]))];
+    });
+    std::array<uint32_t, 4> sum{};
+    for (auto& f : first)
+        for (size_t kind = 0; kind < 4; ++kind) sum[kind] += std::exchange(f[kind], sum[kind]);
+    std::vector<TriPrim> tris(g.tris.size());
+    std::vector<SpherePrim> spheres(g.spheres.size());
+    std::vector<BoxPrim> boxes(g.boxes.size());
+    parallel_for(leaf_chunks, par, [&](size_t c, int) {
+        std::array<uint32_t, 4> next = first[c];
+        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k) {
+            const uint32_t from = g.order[k];
+            const uint32_t e = entries[from];
+            const uint32_t slot = e & kSlotMask;
+            const PrimKind kind = kind_of(from);
+            uint32_t ns = next[static_cast<size_t>(kind)]++;
+            switch (kind) {
+                case PrimKind::Triangle:
+                    tris[ns] = g.tris[slot];
+                    break;
+                case PrimKind::Sphere:
+                    spheres[ns] = g.spheres[slot];
+                    break;
+                case PrimKind::Box:
+                    boxes[ns] = g.boxes[slot];
+                    break;
+                case PrimKind::Other:
+                    ns = slot;  // Impl::others keeps its build order (ShapeInfo::extra points into it)
+                    break;
+            }
+            g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
+            if (prototype) g.inherits[k] = inherits[from];
         }
-        g.order[k] = encode_entry(kind, ns, (e & kTransmissiveBit) != 0);
-        if (prototype) g.inherits[k] = inherits[from];
-    }
+    });
     g.tris = std::move(tris);
     g.spheres = std::move(spheres);
     g.boxes = std::move(boxes);
@@ -475,7 +551,7 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
     else
         g.tris.reserve(n_tris);
     g.verts.reserve(n_verts);
-    reserve_huge(b.bounds, n_bounded);
+    reserve_huge(b.bounds, n_bounded - n_tris);
     reserve_huge(b.entries, n_bounded);
     const size_t errors_before = errors.size();
     bool limit_reported = false;
@@ -483,7 +559,7 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
     if (errors.size() > errors_before) return false;
     g.primitive_count = b.next_prim;
 
-    if (use_bvh && !b.bounds.empty()) {
+    if (use_bvh && !b.entries.empty()) {
         b.finish_bvh();
     } else {
         g.order = std::move(b.entries);

@@ -1,7 +1,9 @@
 // BVH tests (robustness.md section C): the BVH agrees bit for bit with brute force on random
 // scenes, any-hit agrees with closest-hit, the slab test has no false misses, degenerate inputs
 // build shallow trees, planes stay outside the tree, and the thread count changes nothing.
+#include <atomic>
 #include <catch2/catch.hpp>
+#include <cstring>
 
 #include "geometry_test_util.h"
 #include "render/bvh.h"
@@ -239,4 +241,95 @@ TEST_CASE("R52 the BVH build does not depend on the thread count") {
         require_same(*one, *two, r, kInf, RayFilter::All);
         require_same(*one, *all, r, kInf, RayFilter::All);
     }
+}
+
+TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 threads") {
+    // Enough boxes for subtrees on other threads at several levels, clustered and of mixed
+    // sizes so that the splits are uneven.
+    Rng rng(5252);
+    std::vector<Bounds3f> boxes;
+    for (int i = 0; i < 120000; ++i) {
+        Vec3 c(rng.uniform(0, 100), rng.uniform(0, 30),
+               i % 5 == 0 ? rng.uniform(0, 0.1) : rng.uniform(0, 60));
+        boxes.push_back(Bounds3f::around(c, c + Vec3(rng.log_uniform(-3, 0.5))));
+    }
+    auto tree = [&](int threads) {
+        BvhOptions opt;
+        opt.threads = threads;
+        Bvh bvh = build_bvh(boxes, opt);
+        std::vector<Bvh4Node> wide = to_bvh4(bvh.nodes);
+        return std::make_pair(std::move(bvh), std::move(wide));
+    };
+    auto [one, one4] = tree(1);
+    REQUIRE(one.order.size() == boxes.size());
+    for (int threads : {2, 3}) {
+        INFO(threads << " threads");
+        auto [other, other4] = tree(threads);
+        CHECK(other.depth == one.depth);
+        CHECK(other.order == one.order);
+        REQUIRE(other4.size() == one4.size());
+        CHECK(std::memcmp(other4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
+    }
+    // Bounds given chunk by chunk build the same tree as a vector of them, each chunk asked once.
+    BvhOptions opt;
+    opt.threads = 2;
+    // (Catch's assertions are not thread-safe: the callback counts, the test checks after.)
+    std::vector<std::atomic<int>> asked((boxes.size() + kBvhChunk - 1) / kBvhChunk);
+    std::atomic<int> misaligned{0};
+    Bvh given = build_bvh(
+        boxes.size(),
+        [&](uint32_t begin, uint32_t end, Bounds3f* out) {
+            if (begin % kBvhChunk != 0 || end != std::min<size_t>(boxes.size(), begin + kBvhChunk)) {
+                ++misaligned;
+                return;
+            }
+            ++asked[begin / kBvhChunk];
+            for (uint32_t i = begin; i < end; ++i) out[i - begin] = boxes[i];
+        },
+        opt);
+    CHECK(misaligned.load() == 0);
+    for (const auto& a : asked) CHECK(a.load() == 1);
+    CHECK(given.order == one.order);
+    const auto given4 = to_bvh4(given.nodes);
+    REQUIRE(given4.size() == one4.size());
+    CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
+}
+
+TEST_CASE("R52 a large mesh's bad faces are reported in face order, whatever the thread count") {
+    // Bad faces in several of the chunks that are checked in parallel, the first in a late one.
+    auto m = std::make_shared<MeshData>();
+    const uint32_t side = 200;
+    for (uint32_t y = 0; y < side; ++y)
+        for (uint32_t x = 0; x < side; ++x) m->vertices.push_back({x, y, 0});
+    for (uint32_t y = 0; y + 1 < side; ++y)
+        for (uint32_t x = 0; x + 1 < side; ++x) {
+            const uint32_t v = y * side + x;
+            m->faces.push_back({v, v + 1, v + side});
+            m->faces.push_back({v + 1, v + side + 1, v + side});
+        }
+    REQUIRE(m->faces.size() > 2 * 16384);
+    std::vector<size_t> bad;
+    for (size_t f = 17000; f < m->faces.size(); f += 1500) bad.push_back(f);
+    REQUIRE(bad.size() > 12);
+    for (size_t i = 0; i < bad.size(); ++i)
+        m->faces[bad[i]] = i % 2 ? glm::uvec3(0, 0, 1) : glm::uvec3(0, 1, side * side + 7);
+    const SceneSpec spec = scene_of({mesh(m)});
+    auto messages = [&](int threads) {
+        std::vector<SpecError> errors;
+        CHECK_FALSE(Geometry::build(spec, errors, true, threads));
+        std::vector<std::pair<std::string, long>> out;
+        for (const SpecError& e : errors) out.emplace_back(e.message, e.face);
+        return out;
+    };
+    const auto one = messages(1);
+    REQUIRE(one.size() == 11);
+    for (size_t i = 0; i < 10; ++i) {
+        INFO(one[i].first);
+        CHECK(one[i].second == static_cast<long>(bad[i]));
+        CHECK(one[i].first.rfind("face " + std::to_string(bad[i]) + ": ", 0) == 0);
+        CHECK(one[i].first.find(i % 2 ? "degenerate" : "out of range") != std::string::npos);
+    }
+    CHECK(one[10].first == "mesh has " + std::to_string(bad.size() - 10) + " more invalid faces");
+    CHECK(messages(2) == one);
+    CHECK(messages(3) == one);
 }
