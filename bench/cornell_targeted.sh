@@ -86,7 +86,7 @@ for target in $targets; do
   r=$(rmse "$out/targeted-$target.pfm")
   est=$(json "$out/targeted-$target.json" estimated_rmse)
   spp=$(python3 -c "import json, sys; s = json.load(open(sys.argv[1]))['samples_per_pixel']; print('%s/%s/%s' % (s['min'], s['median'], s['max']))" "$out/targeted-$target.json")
-  line "targeted" "$cpu" "$r" "$(awk -v e="$est" 'BEGIN { printf "%.6f", e }')" | sed "s/\$/ $target $spp/"
+  line "targeted" "$cpu" "$r" "$(awk -v e="$est" 'BEGIN { printf "%.6f", e }')" | sed "s|\$| $target $spp|"
   if [[ -z $best ]] && awk -v a="$(net "$r")" -v b="$default_net" 'BEGIN { exit !(a <= b) }'; then
     best="$target $cpu $(net "$r") $(awk -v p="$pov_cpu" -v c="$cpu" 'BEGIN { printf "%.2f", p / c }')"
   fi
