@@ -445,8 +445,6 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     const uint32_t n = static_cast<uint32_t>(count);
     if (n == 0) return bvh;
     const int threads = thread_count(options.threads);
-    ParallelOptions par;
-    par.threads = threads;
     // The references, in fixed chunks on every thread, with each chunk's bounds and centroid
     // bounds; those are merged in chunk order.
     std::vector<Ref> refs;
@@ -455,15 +453,13 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     const size_t chunks = (size_t{n} + kBvhChunk - 1) / kBvhChunk;
     std::vector<Range> chunk_bounds(chunks);
     std::vector<std::vector<Bounds3f>> scratch(static_cast<size_t>(threads));
-    parallel_for(chunks, par, [&](size_t c, int worker) {
-        const uint32_t begin = static_cast<uint32_t>(c * kBvhChunk);
-        const uint32_t end = std::min(n, begin + kBvhChunk);
+    parallel_chunks(n, kBvhChunk, threads, [&](size_t c, size_t begin, size_t end, int worker) {
         std::vector<Bounds3f>& b = scratch[static_cast<size_t>(worker)];
-        b.resize(kBvhChunk);
-        bounds(begin, end, b.data());
+        b.resize(end - begin);
+        bounds(static_cast<uint32_t>(begin), static_cast<uint32_t>(end), b.data());
         Range& cb = chunk_bounds[c];
-        for (uint32_t i = begin; i < end; ++i) {
-            refs[i] = Ref(b[i - begin], i);
+        for (size_t i = begin; i < end; ++i) {
+            refs[i] = Ref(b[i - begin], static_cast<uint32_t>(i));
             const F4 lo = refs[i].lo4(), hi = refs[i].hi4();
             cb.box.extend(lo, hi);
             cb.cbox.extend_point(lo + hi);
@@ -488,10 +484,8 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     bvh.nodes = std::move(task.nodes);
     bvh.depth = task.depth;
     bvh.order.resize(n);  // becomes Geometry's order: see prefer_huge_pages
-    parallel_for(chunks, par, [&](size_t c, int) {
-        const uint32_t begin = static_cast<uint32_t>(c * kBvhChunk);
-        const uint32_t end = std::min(n, begin + kBvhChunk);
-        for (uint32_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
+    parallel_chunks(n, kBvhChunk, threads, [&](size_t, size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
     });
     return bvh;
 }

@@ -235,17 +235,11 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     // face errors in face order, and the chunks' are reported in chunk order: the same messages,
     // in the same order, as one pass over the faces.
     constexpr size_t kChunk = size_t{1} << 14;
-    const auto for_chunks = [this](size_t count, const std::function<void(size_t)>& body) {
-        if (count == 1) return body(0);  // a small mesh: no thread to start
-        ParallelOptions par;
-        par.threads = threads;
-        parallel_for(count, par, [&body](size_t c, int) { body(c); });
-    };
     const uint32_t base = static_cast<uint32_t>(g.verts.size());
     g.verts.resize(base + nv);
     std::vector<uint8_t> bad_vertex(nv, 0);
-    for_chunks((nv + kChunk - 1) / kChunk, [&](size_t c) {
-        for (size_t i = c * kChunk; i < std::min(nv, (c + 1) * kChunk); ++i) {
+    parallel_chunks(nv, kChunk, threads, [&](size_t, size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
             Vec3f w;
             bool ok = is_finite(m.vertices[i]) && world_vertex(x, Vec3(m.vertices[i]), w);
             g.verts[base + i] = ok ? w : Vec3f(0);
@@ -258,13 +252,13 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     };
     const size_t nf = m.faces.size();
     std::vector<FaceErrors> chunk_errors((nf + kChunk - 1) / kChunk);
-    for_chunks(chunk_errors.size(), [&](size_t c) {
+    parallel_chunks(nf, kChunk, threads, [&](size_t c, size_t begin, size_t end, int) {
         FaceErrors& fe = chunk_errors[c];
         auto face_error = [&fe](size_t f, std::string what) {
             if (fe.first.size() < kMaxFaceErrorsPerMesh) fe.first.emplace_back(f, std::move(what));
             ++fe.count;
         };
-        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+        for (size_t f = begin; f < end; ++f) {
             const glm::uvec3& face = m.faces[f];
             if (face.x >= nv || face.y >= nv || face.z >= nv) {
                 face_error(f, "vertex index out of range (the mesh has " + std::to_string(nv) +
@@ -303,8 +297,8 @@ void Builder::mesh(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool
     entries.resize(entry_base + nf);
     if (prototype) inherits.resize(entry_base + nf, shapes[shape_index].material == kInheritMaterial ? 1 : 0);
     next_prim += static_cast<uint32_t>(nf);
-    for_chunks(chunk_errors.size(), [&](size_t c) {
-        for (size_t f = c * kChunk; f < std::min(nf, (c + 1) * kChunk); ++f) {
+    parallel_chunks(nf, kChunk, threads, [&](size_t, size_t begin, size_t end, int) {
+        for (size_t f = begin; f < end; ++f) {
             const glm::uvec3& face = m.faces[f];
             const auto slot = static_cast<uint32_t>(tri_base + f);
             entries[entry_base + f] = encode_entry(PrimKind::Triangle, slot, trans);
@@ -445,17 +439,13 @@ void Builder::finish_bvh() {
     opt.threads = threads;
     // Bounds in canonical order: a triangle's from its vertices, the others' stored in turn.
     // Chunks are bounded in parallel, so each starts at the stored bounds of the entries before it.
-    const auto is_triangle = [&](uint32_t i) {
-        return static_cast<PrimKind>((entries[i] >> kKindShift) & 3u) == PrimKind::Triangle;
-    };
+    const auto kind_of = [&](uint32_t i) { return static_cast<PrimKind>((entries[i] >> kKindShift) & 3u); };
+    const auto is_triangle = [&](uint32_t i) { return kind_of(i) == PrimKind::Triangle; };
     const size_t chunks = (entries.size() + kBvhChunk - 1) / kBvhChunk;
     std::vector<size_t> first_bounds(chunks, 0);
     if (!bounds.empty()) {
-        ParallelOptions par;
-        par.threads = threads;
-        parallel_for(chunks, par, [&](size_t c, int) {
-            const size_t end = std::min(entries.size(), (c + 1) * kBvhChunk);
-            for (size_t i = c * kBvhChunk; i < end; ++i) first_bounds[c] += is_triangle(uint32_t(i)) ? 0 : 1;
+        parallel_chunks(entries.size(), kBvhChunk, threads, [&](size_t c, size_t begin, size_t end, int) {
+            for (size_t i = begin; i < end; ++i) first_bounds[c] += is_triangle(uint32_t(i)) ? 0 : 1;
         });
         size_t sum = 0;
         for (size_t& f : first_bounds) sum += std::exchange(f, sum);
@@ -480,16 +470,10 @@ void Builder::finish_bvh() {
     // is the count of that kind in the chunks before it.
     if (prototype) g.inherits.resize(inherits.size());
     g.order = std::move(bvh.order);  // rewritten in place: entry k reads only bvh.order[k]
-    const auto kind_of = [&](uint32_t from) {
-        return static_cast<PrimKind>((entries[from] >> kKindShift) & 3u);
-    };
-    const size_t n = g.order.size(), leaf_chunks = (n + kBvhChunk - 1) / kBvhChunk;
-    std::vector<std::array<uint32_t, 4>> first(leaf_chunks, std::array<uint32_t, 4>{});
-    ParallelOptions par;
-    par.threads = threads;
-    parallel_for(leaf_chunks, par, [&](size_t c, int) {
-        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k)
-            ++first[c][static_cast<size_t>(kind_of(g.order[k]))];
+    const size_t n = g.order.size();
+    std::vector<std::array<uint32_t, 4>> first((n + kBvhChunk - 1) / kBvhChunk, std::array<uint32_t, 4>{});
+    parallel_chunks(n, kBvhChunk, threads, [&](size_t c, size_t begin, size_t end, int) {
+        for (size_t k = begin; k < end; ++k) ++first[c][static_cast<size_t>(kind_of(g.order[k]))];
     });
     std::array<uint32_t, 4> sum{};
     for (auto& f : first)
@@ -497,9 +481,9 @@ void Builder::finish_bvh() {
     std::vector<TriPrim> tris(g.tris.size());
     std::vector<SpherePrim> spheres(g.spheres.size());
     std::vector<BoxPrim> boxes(g.boxes.size());
-    parallel_for(leaf_chunks, par, [&](size_t c, int) {
+    parallel_chunks(n, kBvhChunk, threads, [&](size_t c, size_t begin, size_t end, int) {
         std::array<uint32_t, 4> next = first[c];
-        for (size_t k = c * kBvhChunk; k < std::min(n, (c + 1) * kBvhChunk); ++k) {
+        for (size_t k = begin; k < end; ++k) {
             const uint32_t from = g.order[k];
             const uint32_t e = entries[from];
             const uint32_t slot = e & kSlotMask;

@@ -100,23 +100,12 @@ public:
     }
 
     void camera_samples(const double* px, const double* py, const uint64_t* key, int n, Color* out) override {
-        Ray rays[Geometry::kMaxPacket];
-        std::optional<HitRecord> hits[Geometry::kMaxPacket];
-        for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
-        stats_.camera_rays += uint64_t(n);
-        geom_.intersect_packet(rays, n, kInfinity, stats_, hits);
-        for (int k = 0; k < n; ++k) out[k] = trace_hit(rays[k], hits[k], Path{key[k], 0, Vec3(1), -1});
+        trace_packet(px, py, n, out, [key](int k) { return Path{key[k], 0, Vec3(1), -1}; });
     }
 
     void sequence_samples(const double* px, const double* py, const uint64_t* key, const uint64_t* seq,
                           const uint32_t* index, int n, Color* out) override {
-        Ray rays[Geometry::kMaxPacket];
-        std::optional<HitRecord> hits[Geometry::kMaxPacket];
-        for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
-        stats_.camera_rays += uint64_t(n);
-        geom_.intersect_packet(rays, n, kInfinity, stats_, hits);
-        for (int k = 0; k < n; ++k)
-            out[k] = trace_hit(rays[k], hits[k], Path{key[k], 0, Vec3(1), -1, seq[k], index[k]});
+        trace_packet(px, py, n, out, [=](int k) { return Path{key[k], 0, Vec3(1), -1, seq[k], index[k]}; });
     }
 
     Color trace_ray(const Ray& ray, uint64_t key) override {
@@ -131,6 +120,18 @@ public:
     }
 
 private:
+    // The camera rays through (px[k], py[k]) intersected as one packet, each shaded along the
+    // path path_of(k) starts.
+    template <class PathOf>
+    void trace_packet(const double* px, const double* py, int n, Color* out, PathOf path_of) {
+        Ray rays[Geometry::kMaxPacket];
+        std::optional<HitRecord> hits[Geometry::kMaxPacket];
+        for (int k = 0; k < n; ++k) rays[k] = scene_.camera().ray(px[k], py[k]);
+        stats_.camera_rays += uint64_t(n);
+        geom_.intersect_packet(rays, n, kInfinity, stats_, hits);
+        for (int k = 0; k < n; ++k) out[k] = trace_hit(rays[k], hits[k], path_of(k));
+    }
+
     Color trace(const Ray& ray, const Path& path) {
         return trace_hit(ray, geom_.intersect(ray, kInfinity, stats_, RayFilter::All), path);
     }

@@ -65,4 +65,17 @@ bool parallel_for(size_t count, const ParallelOptions& options,
     return done.load() == count;
 }
 
+void parallel_chunks(size_t count, size_t size, int threads,
+                     const std::function<void(size_t chunk, size_t begin, size_t end, int worker)>& body) {
+    const size_t chunks = (count + size - 1) / size;
+    auto run = [&](size_t c, int worker) { body(c, c * size, std::min(count, (c + 1) * size), worker); };
+    if (chunks <= 1) {
+        if (chunks == 1) run(0, 0);
+        return;
+    }
+    ParallelOptions options;
+    options.threads = threads;
+    parallel_for(chunks, options, run);
+}
+
 }  // namespace wsd::render

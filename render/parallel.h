@@ -33,4 +33,11 @@ int thread_count(int requested);
 bool parallel_for(size_t count, const ParallelOptions& options,
                   const std::function<void(size_t index, int worker)>& body);
 
+// Runs body(chunk, begin, end, worker) for the fixed chunks [k·size, min(count, (k + 1)·size))
+// of [0, count), on `threads` threads (0 = all cores); a single chunk runs on the calling
+// thread. The chunks do not depend on the thread count, so neither do results kept per chunk
+// and merged in chunk order.
+void parallel_chunks(size_t count, size_t size, int threads,
+                     const std::function<void(size_t chunk, size_t begin, size_t end, int worker)>& body);
+
 }  // namespace wsd::render

@@ -55,15 +55,8 @@ struct Passes {
         return x >= inner.x0 && x < inner.x1 && y >= inner.y0 && y < inner.y1;
     }
 
-    // The rendered region's estimated display-space RMSE (as estimated_rmse, without a copy).
-    double inner_rmse() const {
-        double sum = 0;
-        for (int y = inner.y0; y < inner.y1; ++y)
-            for (int x = inner.x0; x < inner.x1; ++x)
-                sum += pixels[index(x, y)].display_variance(PixelEstimate::Report);
-        const double count = double(inner.x1 - inner.x0) * double(inner.y1 - inner.y0);
-        return count > 0 ? std::sqrt(sum / count) : 0.0;
-    }
+    // The rendered region's estimated display-space RMSE.
+    double inner_rmse() const { return estimated_rmse(pixels, region, inner); }
 };
 
 // One render thread's tracer and counters.
@@ -233,11 +226,15 @@ uint32_t planned_samples(const PixelEstimate& e, double target, const Progressiv
     return std::clamp(uint32_t(std::min(next, double(max))), min, max);
 }
 
-double estimated_rmse(const std::vector<PixelEstimate>& pixels) {
-    if (pixels.empty()) return 0;
+double estimated_rmse(const std::vector<PixelEstimate>& pixels, const Region& grid, const Region& part) {
+    const size_t width = size_t(grid.x1 - grid.x0);
     double sum = 0;
-    for (const PixelEstimate& e : pixels) sum += e.display_variance(PixelEstimate::Report);
-    return std::sqrt(sum / double(pixels.size()));
+    for (int y = part.y0; y < part.y1; ++y)
+        for (int x = part.x0; x < part.x1; ++x)
+            sum += pixels[size_t(y - grid.y0) * width + size_t(x - grid.x0)].display_variance(
+                PixelEstimate::Report);
+    const double count = double(part.x1 - part.x0) * double(part.y1 - part.y0);
+    return count > 0 ? std::sqrt(sum / count) : 0.0;
 }
 
 bool render_progressive(const Scene& scene, const RenderOptions& options, const Region& region,

@@ -31,9 +31,15 @@ inline constexpr double kNotCalm = std::numeric_limits<double>::infinity();
 uint32_t planned_samples(const PixelEstimate& e, double target, const Progressive& options,
                          double calm = kNotCalm);
 
-// The image's estimated display-space RMSE: the root of the mean of its pixels' display
-// variances from their reporting halves (0 for no pixels).
-double estimated_rmse(const std::vector<PixelEstimate>& pixels);
+// The estimated display-space RMSE of the pixels of `part`, a rectangle inside `grid` whose
+// pixels `pixels` holds row by row: the root of the mean of their display variances from their
+// reporting halves (0 for no pixels).
+double estimated_rmse(const std::vector<PixelEstimate>& pixels, const Region& grid, const Region& part);
+// The same over all of `pixels`.
+inline double estimated_rmse(const std::vector<PixelEstimate>& pixels) {
+    const Region all{0, 0, int(pixels.size()), pixels.empty() ? 0 : 1};
+    return estimated_rmse(pixels, all, all);
+}
 
 class Scene;
 
