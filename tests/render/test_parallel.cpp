@@ -1,5 +1,6 @@
 // parallel_for: every index runs exactly once whatever the thread count, a body's exception
 // reaches the caller, cancellation stops it early, and progress polling happens while it runs.
+#include <algorithm>
 #include <atomic>
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -7,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "render/parallel.h"
@@ -149,4 +151,31 @@ TEST_CASE("parallel_for polls progress on the calling thread while bodies run", 
             while (polls.load() == 0) std::this_thread::yield();
     });
     CHECK(polls.load() >= 1);
+}
+
+TEST_CASE("parallel_chunks cuts [0, count) into the same fixed chunks on any number of threads",
+          "[parallel]") {
+    for (size_t count : {size_t(0), size_t(1), size_t(7), size_t(8), size_t(9), size_t(100)}) {
+        for (int threads : {1, 2, 3}) {
+            INFO("count " << count << " threads " << threads);
+            std::vector<std::atomic<int>> seen(count);
+            const size_t chunks = (count + 7) / 8;
+            std::vector<std::pair<size_t, size_t>> ranges(chunks);
+            std::atomic<int> calls{0};
+            wsd::render::parallel_chunks(count, 8, threads,
+                                         [&](size_t c, size_t begin, size_t end, int worker) {
+                                             CHECK(worker >= 0);
+                                             CHECK(worker < threads);
+                                             ranges[c] = {begin, end};
+                                             for (size_t i = begin; i < end; ++i) seen[i].fetch_add(1);
+                                             calls.fetch_add(1);
+                                         });
+            CHECK(size_t(calls.load()) == chunks);
+            for (size_t c = 0; c < chunks; ++c) {
+                CHECK(ranges[c].first == c * 8);
+                CHECK(ranges[c].second == std::min(count, c * 8 + 8));
+            }
+            for (size_t i = 0; i < count; ++i) CHECK(seen[i].load() == 1);
+        }
+    }
 }
