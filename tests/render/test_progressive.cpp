@@ -142,6 +142,25 @@ TEST_CASE("the estimated RMSE of a synthetic image of known variance matches its
     }
 }
 
+TEST_CASE("the estimated RMSE of a region counts that region's pixels only", "[progressive]") {
+    // A 3 × 2 grid at (10, 20) whose pixel i (row by row) has samples 0 and 0.01·(i + 1): each
+    // reports an error of its own.
+    const Region grid{10, 20, 13, 22};
+    std::vector<PixelEstimate> pixels(6);
+    std::vector<double> report(6);
+    for (size_t i = 0; i < 6; ++i) {
+        pixels[i].add(Color(0));
+        pixels[i].add(Color(0.01 * double(i + 1)));
+        report[i] = pixels[i].display_variance(PixelEstimate::Report);
+        REQUIRE(report[i] > 0);
+    }
+    // The part x in [11, 13), y = 21: pixels 4 and 5 of the grid.
+    CHECK(estimated_rmse(pixels, grid, Region{11, 21, 13, 22}) ==
+          Approx(std::sqrt((report[4] + report[5]) / 2)));
+    CHECK(estimated_rmse(pixels, grid, grid) == Approx(estimated_rmse(pixels)));
+    CHECK(estimated_rmse(pixels, grid, Region{11, 21, 11, 22}) == 0);  // no pixels
+}
+
 TEST_CASE("planned_samples: first pass, minimum, target, growth and maximum", "[progressive]") {
     Progressive o;
     o.min_samples = 8;
