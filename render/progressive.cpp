@@ -23,15 +23,6 @@ namespace wsd::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kTileSize = 16;
-
-std::vector<Region> tiles_of(const Region& r) {
-    std::vector<Region> tiles;
-    for (int y = r.y0; y < r.y1; y += kTileSize)
-        for (int x = r.x0; x < r.x1; x += kTileSize)
-            tiles.push_back({x, y, std::min(x + kTileSize, r.x1), std::min(y + kTileSize, r.y1)});
-    return tiles;
-}
 
 // The state every pass shares: the pixels' estimates and plans, and the counters summed once a
 // tile under a lock (read by progress while a pass runs).
@@ -257,7 +248,7 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
              {},
              0};
     if (options.aovs) p.aov.resize(count);
-    const std::vector<Region> tiles = tiles_of(apron);
+    const std::vector<Region> tiles = render_tiles(apron);
     std::vector<std::unique_ptr<Worker>> workers(size_t(thread_count(options.threads)));
     const TracerOptions tracer_options{options.specialise, options.adaptive_lights, true};
 

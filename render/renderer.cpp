@@ -25,19 +25,10 @@ namespace wsd::render {
 
 namespace {
 
-constexpr int kTileSize = 16;
 // The sample index of the adaptive prepass's centre ray (distinct from the grid's indices).
 constexpr uint32_t kCentreSample = 0xffffffffu;
 
 using Clock = std::chrono::steady_clock;
-
-std::vector<Region> make_tiles(const Region& r) {
-    std::vector<Region> tiles;
-    for (int y = r.y0; y < r.y1; y += kTileSize)
-        for (int x = r.x0; x < r.x1; x += kTileSize)
-            tiles.push_back({x, y, std::min(x + kTileSize, r.x1), std::min(y + kTileSize, r.y1)});
-    return tiles;
-}
 
 size_t area(const Region& r) {
     return size_t(r.x1 - r.x0) * size_t(r.y1 - r.y0);
@@ -297,7 +288,7 @@ bool render_tiles(const RenderJob& job) {
     const TracerOptions tracer_options{job.options.specialise, job.options.adaptive_lights};
     // Renders every tile of `rect` with tile(renderer, tile); false when cancelled.
     auto run = [&](const Region& rect, void (TileRenderer<kAov>::*tile)(const Region&)) {
-        const std::vector<Region> tiles = make_tiles(rect);
+        const std::vector<Region> tiles = render_tiles(rect);
         return parallel_for(tiles.size(), job.parallel, [&](size_t i, int id) {
             std::unique_ptr<Worker<kAov>>& w = workers[size_t(id)];
             if (!w) {  // kept only once complete, should make_tracer throw
@@ -322,6 +313,14 @@ bool render_tiles(const RenderJob& job) {
 }
 
 }  // namespace
+
+std::vector<Region> render_tiles(const Region& r) {
+    std::vector<Region> tiles;
+    for (int y = r.y0; y < r.y1; y += kRenderTile)
+        for (int x = r.x0; x < r.x1; x += kRenderTile)
+            tiles.push_back({x, y, std::min(x + kRenderTile, r.x1), std::min(y + kRenderTile, r.y1)});
+    return tiles;
+}
 
 RenderResult render(const Scene& scene, const RenderOptions& options) {
     const auto start = Clock::now();

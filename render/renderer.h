@@ -36,6 +36,11 @@ struct Region {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
+// The units of work of a render's parallel_for: `r` cut into kRenderTile × kRenderTile squares
+// (narrower at its right and bottom edges), row by row.
+inline constexpr int kRenderTile = 16;
+std::vector<Region> render_tiles(const Region& r);
+
 // Progressive rendering (render/progressive.h): a first pass of `first_samples` stratified camera
 // samples in every pixel, then passes that add samples where the estimated display-space error
 // is largest. With a target, a pixel stops once its own estimate is at most the target and it has
