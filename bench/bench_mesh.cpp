@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
                     static_cast<double>(g->triangle_count()));
 
     Throughput t = measure(*g, {0.3, 0.4, -3}, {0, 0, 0}, 45, {5, 5, -5}, 1024);
-    std::printf("mesh primary rays: %.2f M/CPU-s (%.1f %% hit; %.1f node tests, %.1f triangle tests a ray)\n",
+    std::printf("mesh primary rays: %.2f M/CPU-s (%.1f %% hit; %.1f box tests, %.1f triangle tests a ray)\n",
                 t.primary * 1e-6, 100 * t.hit_fraction, t.boxes_primary, t.prims_primary);
     std::printf(
         "mesh primary rays in packets: 2x2 pixels %.2f M/CPU-s, 4x4 pixels (the renderer's 1-spp path) %.2f "

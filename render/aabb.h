@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <limits>
 #include <utility>
-#if defined(__SSE2__)
+#if defined(__AVX__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
 #include <emmintrin.h>
 #endif
 
@@ -53,22 +55,56 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
-// A node of the 4-wide traversal tree: up to four children, transposed so that one SIMD slab
-// test covers them. Per axis a: lo[a][i] and hi[a][i] bound child i. A child with count == 0 is
-// inner and `first` is its own Bvh4Node; otherwise it is a leaf over order[first, first +
-// count). Unused lanes hold the empty box (lo = +inf, hi = -inf), which no ray enters.
-struct alignas(64) Bvh4Node {
-    float lo[3][4];
-    float hi[3][4];
-    uint32_t first[4];
-    uint32_t count[4];
-};
-static_assert(sizeof(Bvh4Node) == 128);
+// The width of the traversal tree: children per node. 8 halves the levels a ray walks through
+// against 4 (measured faster on meshes, docs/performance.md); the node test runs in 4-lane
+// groups, so any x86-64 (SSE2) runs it.
+inline constexpr int kBvhWidth = 8;
+inline constexpr int kBvhGroups = kBvhWidth / 4;
 
-// Per-ray constants of the slab test, and the test of the four boxes of a node at once.
+// A node of the wide traversal tree: up to kBvhWidth children, transposed so that SIMD slab
+// tests cover four at a time. Per axis a: lo[a][i] and hi[a][i] bound child i. Children fill
+// lanes 0, 1, ...; unused lanes hold the empty box (lo = +inf, hi = -inf), which no ray enters,
+// and child 0. A child's word packs count (bits 24-31) and first (bits 0-23): count == 0 is an
+// inner child and `first` its own BvhWideNode; otherwise a leaf over order[first, first +
+// count). 224 bytes at 32-byte alignment: whatever its offset, a node spans 4 cache lines.
+struct alignas(32) BvhWideNode {
+    static constexpr int kWidth = kBvhWidth;
+    static constexpr int kFirstBits = 24;
+    static constexpr uint32_t kFirstMask = (1u << kFirstBits) - 1;
+    static constexpr uint32_t kMaxCount = 0xffu;
+    float lo[3][kWidth];
+    float hi[3][kWidth];
+    uint32_t child[kWidth];
+
+    uint32_t first(int i) const { return child[i] & kFirstMask; }
+    uint32_t count(int i) const { return child[i] >> kFirstBits; }
+    void set_child(int i, uint32_t first_, uint32_t count_) { child[i] = count_ << kFirstBits | first_; }
+
+    // Bit i set for each lane that holds a child (the root is nobody's child, and a leaf's count
+    // is not 0, so only unused lanes hold 0).
+    int child_mask() const {
+#if defined(__SSE2__)
+        int m = 0;
+        for (int g = 0; g < kBvhGroups; ++g) {
+            const __m128i c = _mm_load_si128(reinterpret_cast<const __m128i*>(child + 4 * g));
+            m |= _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(c, _mm_setzero_si128()))) << (4 * g);
+        }
+        return ~m & ((1 << kWidth) - 1);
+#else
+        int m = 0;
+        for (int i = 0; i < kWidth; ++i)
+            if (child[i] != 0) m |= 1 << i;
+        return m;
+#endif
+    }
+};
+static_assert(sizeof(BvhWideNode) == 28 * kBvhWidth);
+static_assert(kBvhWidth % 4 == 0 && kBvhWidth <= 16);
+
+// Per-ray constants of the slab test, and the test of a node's children at once.
 struct RayBoxTest {
     float o_near[3], o_far[3], inv[3];
-    int near_off[3], far_off[3];  // the near and far plane rows: offsets into Bvh4Node, in floats
+    int near_off[3], far_off[3];  // the near and far plane rows: offsets into BvhWideNode, in floats
 #if defined(__SSE2__)
     __m128 o_near4[3], o_far4[3], inv4[3];
 #endif
@@ -88,8 +124,8 @@ struct RayBoxTest {
             o_near[a] = neg ? lo : hi;
             o_far[a] = neg ? hi : lo;
             inv[a] = static_cast<float>(rec[a]);
-            near_off[a] = (neg ? 12 : 0) + 4 * a;
-            far_off[a] = (neg ? 0 : 12) + 4 * a;
+            near_off[a] = (neg ? 3 * kBvhWidth : 0) + kBvhWidth * a;
+            far_off[a] = (neg ? 0 : 3 * kBvhWidth) + kBvhWidth * a;
 #if defined(__SSE2__)
             o_near4[a] = _mm_set1_ps(o_near[a]);
             o_far4[a] = _mm_set1_ps(o_far[a]);
@@ -102,21 +138,42 @@ struct RayBoxTest {
 
     // Bit i of the result is set when the ray may meet child i within (0, t_limit]; t_entry[i]
     // gets its entry distance. NaN slabs (0·∞) never decide.
-    int hit4(const Bvh4Node& node, float t_limit, float* t_entry) const {
+    int hit(const BvhWideNode& node, float t_limit, float* t_entry) const {
         const float* base = &node.lo[0][0];
-#if defined(__SSE2__)
-        __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
+#if defined(__AVX__)
+        // Built for AVX (WSD_ARCH): the same operations on all eight lanes at once.
+        static_assert(kBvhWidth == 8);
+        __m256 tn = _mm256_setzero_ps(), tf = _mm256_set1_ps(t_limit);
         for (int a = 0; a < 3; ++a) {
-            __m128 t0 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + near_off[a]), o_near4[a]), inv4[a]);
-            __m128 t1 = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + far_off[a]), o_far4[a]), inv4[a]);
-            tn = _mm_max_ps(t0, tn);  // maxps returns its second operand when one is NaN
-            tf = _mm_min_ps(t1, tf);
+            const __m256 on = _mm256_set_m128(o_near4[a], o_near4[a]),
+                         of = _mm256_set_m128(o_far4[a], o_far4[a]);
+            const __m256 iv = _mm256_set_m128(inv4[a], inv4[a]);
+            __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + near_off[a]), on), iv);
+            __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + far_off[a]), of), iv);
+            tn = _mm256_max_ps(t0, tn);  // returns its second operand when one is NaN, as maxps
+            tf = _mm256_min_ps(t1, tf);
         }
-        _mm_storeu_ps(t_entry, tn);
-        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(kWiden))));
+        _mm256_storeu_ps(t_entry, tn);
+        return _mm256_movemask_ps(_mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _CMP_LE_OQ));
+#elif defined(__SSE2__)
+        int mask = 0;
+        for (int g = 0; g < kBvhGroups; ++g) {
+            __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
+            for (int a = 0; a < 3; ++a) {
+                __m128 t0 =
+                    _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + near_off[a] + 4 * g), o_near4[a]), inv4[a]);
+                __m128 t1 =
+                    _mm_mul_ps(_mm_sub_ps(_mm_load_ps(base + far_off[a] + 4 * g), o_far4[a]), inv4[a]);
+                tn = _mm_max_ps(t0, tn);  // maxps returns its second operand when one is NaN
+                tf = _mm_min_ps(t1, tf);
+            }
+            _mm_storeu_ps(t_entry + 4 * g, tn);
+            mask |= _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(kWiden)))) << (4 * g);
+        }
+        return mask;
 #else
         int mask = 0;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < kBvhWidth; ++i) {
             float tn = 0, tf = t_limit;
             for (int a = 0; a < 3; ++a) {
                 float t0 = (base[near_off[a] + i] - o_near[a]) * inv[a];

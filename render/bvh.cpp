@@ -362,7 +362,7 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
     set_bounds(task.nodes[node], r.box);
     task.depth = std::max(task.depth, depth);
     const uint32_t n = r.end - r.begin;
-    const uint32_t max_leaf = static_cast<uint32_t>(std::max(1, s.opt.max_leaf));
+    const uint32_t max_leaf = static_cast<uint32_t>(std::clamp(s.opt.max_leaf, 1, kMaxLeafCount));
     if (n == 1) return make_leaf(task, node, r);
 
     Range left, right;
@@ -488,93 +488,6 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
         for (size_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
     });
     return bvh;
-}
-
-namespace {
-
-float node_area(const BvhNode& n) {
-    float x = n.b[3] - n.b[0], y = n.b[4] - n.b[1], z = n.b[5] - n.b[2];
-    return x * y + y * z + z * x;
-}
-
-// The children of the Bvh4Node for inner node `n`: its two children, opening the largest inner
-// one until there are four. Returns their number.
-int children4(const std::vector<BvhNode>& nodes, uint32_t n, uint32_t* kids) {
-    kids[0] = nodes[n].first;
-    kids[1] = nodes[n].first + 1;
-    int count = 2;
-    while (count < 4) {
-        int open = -1;
-        for (int i = 0; i < count; ++i)
-            if (nodes[kids[i]].count == 0 &&
-                (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
-                open = i;
-        if (open < 0) break;
-        uint32_t inner = kids[open];
-        kids[open] = nodes[inner].first;
-        kids[count++] = nodes[inner].first + 1;
-    }
-    return count;
-}
-
-// The number of Bvh4Nodes emit4 makes for inner node `n`.
-size_t count4(const std::vector<BvhNode>& nodes, uint32_t n) {
-    uint32_t kids[4];
-    const int count = children4(nodes, n, kids);
-    size_t total = 1;
-    for (int i = 0; i < count; ++i)
-        if (nodes[kids[i]].count == 0) total += count4(nodes, kids[i]);
-    return total;
-}
-
-// Emits the Bvh4Node for inner node `n` and, depth first, the nodes below it; returns its index.
-uint32_t emit4(const std::vector<BvhNode>& nodes, uint32_t n, std::vector<Bvh4Node>& out) {
-    uint32_t kids[4];
-    const int count = children4(nodes, n, kids);
-    const uint32_t index = static_cast<uint32_t>(out.size());
-    out.push_back(Bvh4Node{});
-    Bvh4Node node{};
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    for (int i = 0; i < 4; ++i) {
-        for (int a = 0; a < 3; ++a) {
-            node.lo[a][i] = i < count ? nodes[kids[i]].b[a] : kInf;
-            node.hi[a][i] = i < count ? nodes[kids[i]].b[a + 3] : -kInf;
-        }
-        node.first[i] = 0;
-        node.count[i] = 0;
-    }
-    for (int i = 0; i < count; ++i) {
-        const BvhNode& k = nodes[kids[i]];
-        node.count[i] = k.count;
-        node.first[i] = k.count > 0 ? k.first : emit4(nodes, kids[i], out);
-    }
-    out[index] = node;
-    return index;
-}
-
-}  // namespace
-
-std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes) {
-    std::vector<Bvh4Node> out;
-    if (nodes.empty()) return out;
-    // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
-    // no huge pages (see prefer_huge_pages).
-    out.reserve(nodes[0].count > 0 ? 1 : count4(nodes, 0));
-    if (nodes[0].count > 0) {
-        Bvh4Node root{};
-        constexpr float kInf = std::numeric_limits<float>::infinity();
-        for (int i = 0; i < 4; ++i)
-            for (int a = 0; a < 3; ++a) {
-                root.lo[a][i] = i == 0 ? nodes[0].b[a] : kInf;
-                root.hi[a][i] = i == 0 ? nodes[0].b[a + 3] : -kInf;
-            }
-        root.first[0] = nodes[0].first;
-        root.count[0] = nodes[0].count;
-        out.push_back(root);
-    } else {
-        emit4(nodes, 0, out);
-    }
-    return out;
 }
 
 void prefer_huge_pages(const void* data, size_t bytes) {

@@ -1,8 +1,8 @@
 // A bounding volume hierarchy over boxes and indices only (no shapes): binned SAH build into flat
 // 32-byte nodes whose two children sit side by side, with a primitive permutation. Large inputs
 // are split into subtrees built on std::threads; the result does not depend on the thread count.
-// For traversal the binary tree is collapsed into a 4-wide one (Bvh4Node: about the same bytes
-// per child, half the levels), so that one SIMD slab test covers four children.
+// For traversal the binary tree is collapsed into a wide one (BvhWideNode: about the same bytes
+// per child, a third of the levels), so that SIMD slab tests cover its children together.
 #pragma once
 
 #include <cstddef>
@@ -14,8 +14,12 @@
 
 namespace wsd::render {
 
+// The most primitives a leaf may hold, whatever BvhOptions::max_leaf asks (the wide tree packs a
+// leaf's count into 8 bits).
+inline constexpr int kMaxLeafCount = 255;
+
 struct BvhOptions {
-    int max_leaf = 4;  // primitives per leaf at most
+    int max_leaf = 4;  // primitives per leaf at most (taken as 1 to kMaxLeafCount)
     int bins = 16;     // SAH bins per axis
     float traversal_cost = 1.0f;
     float intersect_cost = 1.0f;
@@ -41,9 +45,14 @@ inline constexpr uint32_t kBvhChunk = 1u << 14;
 using BvhBoundsFn = std::function<void(uint32_t begin, uint32_t end, Bounds3f* out)>;
 Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options);
 
-// Collapses built nodes into the 4-wide traversal tree (see Bvh4Node in aabb.h), in depth-first
-// order; node 0 holds the root's children (or the root itself when it is a leaf).
-std::vector<Bvh4Node> to_bvh4(const std::vector<BvhNode>& nodes);
+// Collapses built nodes into the wide traversal tree (see BvhWideNode in aabb.h), in depth-first
+// order; node 0 holds the root's children (or the root itself when it is a leaf). Each wide node
+// takes a binary node's two children and opens the one of largest area that is inner until it
+// holds kBvhWidth children (render/bvh_wide.cpp). A subtree of a few primitives over
+// order[first, first + count) becomes one leaf when mergeable(first, count) says so (cheap
+// primitives: triangles); without the function, leaves stay as built.
+using WideLeafFn = std::function<bool(uint32_t first, uint32_t count)>;
+std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable = {});
 
 // Asks the kernel to back the 2 MiB-aligned part of a large, not yet touched buffer (a vector
 // just reserved) with huge pages. On VMs a 4 KiB page fault is expensive (measured 2.9 ms per MiB

@@ -61,7 +61,7 @@ struct ClosestHit {
     Counters& c;
     float limit;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.box.hit(node, limit, tn); }
     bool leaf(const Child& e) {
         closest_in<kFilter>(g, r, e.first, e.count, best, c);
         limit = to_float_up(best.limit);
@@ -82,7 +82,7 @@ struct AnyHit {
     Counters& c;
     float limit;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.box.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.box.hit(node, limit, tn); }
     bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
     void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
@@ -94,9 +94,9 @@ void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
         return;
     }
     ClosestHit<kFilter> q{g, r, best, c, to_float_up(best.limit)};
-    uint64_t visits = 0;  // counted in a register, added to c once
-    walk_bvh(g.nodes.data(), q, visits);
-    c.boxes += 4 * visits;
+    uint64_t boxes = 0;  // counted in a register, added to c once
+    walk_bvh(g.nodes.data(), q, boxes);
+    c.boxes += boxes;
 }
 
 template <int kFilter>
@@ -111,9 +111,9 @@ bool any_hit(const Impl& g, const Ray& ray, const RayPre& r, double tmax, Counte
     }
     if (g.nodes.empty()) return any_in<kFilter>(g, r, 0, static_cast<uint32_t>(g.order.size()), tmax, c);
     AnyHit<kFilter> q{g, r, tmax, c, to_float_up(tmax)};
-    uint64_t visits = 0;
-    const bool hit = walk_bvh(g.nodes.data(), q, visits);
-    c.boxes += 4 * visits;
+    uint64_t boxes = 0;
+    const bool hit = walk_bvh(g.nodes.data(), q, boxes);
+    c.boxes += boxes;
     return hit;
 }
 

@@ -1,7 +1,7 @@
 // Closest hits for a packet of up to 16 rays that start close together and point the same way
 // (camera rays through one pixel or a block of pixels): one walk of the BVH for all of them.
-// At each node one SIMD test bounds, by interval arithmetic over the rays, which of the four
-// children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit4's
+// At each node one SIMD test bounds, by interval arithmetic over the rays, which of the
+// children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit's
 // arithmetic, lane by lane) picks the rays whose primitives are tested, with the single-ray
 // tests. Each ray gets exactly the hit intersect() returns: it enters every box intersect()
 // would enter for it (the bounds are conservative, its own test is the same, its limit never
@@ -26,8 +26,8 @@ namespace {
 
 using namespace detail;
 
-// Fewer nodes than primitives, so a node index times 4 fits in 32 bits (BvhChildAt::box).
-static_assert(kMaxPrimitives <= (size_t{1} << 30));
+// Fewer nodes than primitives, so a node index and its lane fit in 32 bits (BvhChildAt::box).
+static_assert(kMaxPrimitives <= (size_t{1} << (32 - kLaneBits)));
 
 // Q groups of four rays (lanes = rays; ray 4q + k is lane k of group q).
 template <int Q>
@@ -37,12 +37,12 @@ struct Packet {
     // Per ray: RayBoxTest's constants.
     __m128 o_near[Q][3], o_far[Q][3], inv[Q][3];
     // For the whole packet (broadcast): origins and inverse directions that bound every ray's
-    // slab distances (see bound4).
+    // slab distances (see bound).
     __m128 po_near[3], po_far[3], inv_lo[3], inv_hi[3];
     int near_off[3], far_off[3];
 
-    // Ray by ray: hit4's operations for child i of the node at `base`, so that bit r is set
-    // exactly when RayBoxTest::hit4 of ray r would set bit i.
+    // Ray by ray: hit's operations for child i of the node at `base`, so that bit r is set
+    // exactly when RayBoxTest::hit of ray r would set bit i.
     uint32_t rays_in(const float* base, int i, const __m128* t_limit) const {
         __m128 lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
@@ -69,23 +69,28 @@ struct Packet {
     // is taken from the origin that makes it smallest (near) or largest (far), and rounded
     // products are monotone in each factor, so t_entry[i] is at most, and the exit bound at
     // least, what any ray's own test computes. Finite non-zero inverses only (no NaN here).
-    int bound4(const Bvh4Node& node, float t_limit, float* t_entry) const {
+    int bound(const BvhWideNode& node, float t_limit, float* t_entry) const {
         const float* base = &node.lo[0][0];
-        __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
-        for (int a = 0; a < 3; ++a) {
-            const __m128 dn = _mm_sub_ps(_mm_load_ps(base + near_off[a]), po_near[a]);
-            const __m128 df = _mm_sub_ps(_mm_load_ps(base + far_off[a]), po_far[a]);
-            const __m128 t0 = _mm_min_ps(_mm_mul_ps(dn, inv_lo[a]), _mm_mul_ps(dn, inv_hi[a]));
-            const __m128 t1 = _mm_max_ps(_mm_mul_ps(df, inv_lo[a]), _mm_mul_ps(df, inv_hi[a]));
-            tn = _mm_max_ps(t0, tn);
-            tf = _mm_min_ps(t1, tf);
+        int mask = 0;
+        for (int g = 0; g < kBvhGroups; ++g) {
+            __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
+            for (int a = 0; a < 3; ++a) {
+                const __m128 dn = _mm_sub_ps(_mm_load_ps(base + near_off[a] + 4 * g), po_near[a]);
+                const __m128 df = _mm_sub_ps(_mm_load_ps(base + far_off[a] + 4 * g), po_far[a]);
+                const __m128 t0 = _mm_min_ps(_mm_mul_ps(dn, inv_lo[a]), _mm_mul_ps(dn, inv_hi[a]));
+                const __m128 t1 = _mm_max_ps(_mm_mul_ps(df, inv_lo[a]), _mm_mul_ps(df, inv_hi[a]));
+                tn = _mm_max_ps(t0, tn);
+                tf = _mm_min_ps(t1, tf);
+            }
+            _mm_storeu_ps(t_entry + 4 * g, tn);
+            mask |= _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))))
+                    << (4 * g);
         }
-        _mm_storeu_ps(t_entry, tn);
-        return _mm_movemask_ps(_mm_cmple_ps(tn, _mm_mul_ps(tf, _mm_set1_ps(RayBoxTest::kWiden))));
+        return mask;
     }
 };
 
-// The packet's BVH walk: nearest child first by the packet's interval test (bound4); at a leaf,
+// The packet's BVH walk: nearest child first by the packet's interval test (bound); at a leaf,
 // each ray's own slab test picks the rays whose primitives are tested. Rays whose lane in `live`
 // is clear have limit −1 and enter nothing.
 template <int Q>
@@ -118,13 +123,14 @@ struct PacketClosestHit {
         limit_max = _mm_cvtss_f32(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1))));
     }
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return p.bound4(node, limit_max, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return p.bound(node, limit_max, tn); }
     bool open(float t) const { return t <= limit_max * RayBoxTest::kWiden; }
     void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 
     bool leaf(const Child& e) {
-        const Bvh4Node* nodes = g.nodes.data();
-        const uint32_t lanes = p.rays_in(&nodes[e.box >> 2].lo[0][0], static_cast<int>(e.box & 3), limit);
+        const BvhWideNode* nodes = g.nodes.data();
+        const uint32_t lanes =
+            p.rays_in(&nodes[e.box >> kLaneBits].lo[0][0], static_cast<int>(e.box & kLaneMask), limit);
         leaf_boxes += Q;
         if (lanes == 0) return false;
         // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
@@ -162,9 +168,9 @@ struct PacketClosestHit {
 template <int Q>
 void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
     PacketClosestHit<Q> q(g, p, best, live, c);
-    uint64_t visits = 0;
-    walk_bvh(g.nodes.data(), q, visits);
-    c.boxes += 4 * (visits + q.leaf_boxes);
+    uint64_t boxes = 0;
+    walk_bvh(g.nodes.data(), q, boxes);
+    c.boxes += boxes + 4 * q.leaf_boxes;
 }
 
 // All four lanes set to the least (most) of x's lanes.
@@ -214,8 +220,8 @@ bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet<Q>& p) {
         }
     }
     for (int a = 0; a < 3; ++a) {
-        p.near_off[a] = (neg[a] ? 12 : 0) + 4 * a;
-        p.far_off[a] = (neg[a] ? 0 : 12) + 4 * a;
+        p.near_off[a] = (neg[a] ? 3 * kBvhWidth : 0) + kBvhWidth * a;
+        p.far_off[a] = (neg[a] ? 0 : 3 * kBvhWidth) + kBvhWidth * a;
         // The near plane's offset (plane − origin) is least with the largest origin when the
         // rays go up this axis, and a negative inverse turns the greatest offset into the least
         // distance; the far plane's the other way round.

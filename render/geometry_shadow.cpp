@@ -112,17 +112,15 @@ struct ShaftGather {
     const Shaft& shaft;
     const ShaftSelf& self;
     ShaftCandidates& out;
-    uint64_t boxes = 0;  // boxes tested: the non-empty lanes of the nodes visited
     End end = End::Walked;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) {
+    int enter(const BvhWideNode& node, uint32_t, float* tn) {
         int mask = 0;
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < kBvhWidth; ++i) {
             tn[i] = 0;
             const float lo[3] = {node.lo[0][i], node.lo[1][i], node.lo[2][i]};
             const float hi[3] = {node.hi[0][i], node.hi[1][i], node.hi[2][i]};
             if (!(lo[0] <= hi[0])) continue;  // an unused lane
-            ++boxes;
             if (!shaft.outside(lo, hi)) mask |= 1 << i;
         }
         return mask;
@@ -178,9 +176,9 @@ bool ShaftCandidates::gather(const Geometry& geom, const Shaft& shaft, const Sha
         if (!add(out, plane_entry(i))) return false;
     }
     ShaftGather q{g, shaft, self, out};
-    uint64_t visits = 0;
-    walk_bvh(g.nodes.data(), q, visits);
-    stats.box_tests += q.boxes;
+    uint64_t boxes = 0;
+    walk_bvh(g.nodes.data(), q, boxes);
+    stats.box_tests += boxes;
     out.blocked = q.end == ShaftGather::End::Blocked;
     return q.end != ShaftGather::End::Overflow;
 }

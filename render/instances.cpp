@@ -236,7 +236,9 @@ struct InnerClosest {
     Best& best;
     float limit;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return ir.local.box.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const {
+        return ir.local.box.hit(node, limit, tn);
+    }
     bool leaf(const Child& e) {
         for (uint32_t k = e.first; k < e.first + e.count; ++k) ir.test(k, best);
         limit = to_float_up(best.limit);
@@ -253,7 +255,9 @@ struct InnerAny {
     Best& best;
     float limit;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return ir.local.box.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const {
+        return ir.local.box.hit(node, limit, tn);
+    }
     bool leaf(const Child& e) {
         for (uint32_t k = e.first; k < e.first + e.count; ++k) {
             ir.test(k, best);
@@ -274,15 +278,15 @@ bool test_instance(const Impl& g, const InstancePrim& q, const RayPre& r, double
     InstanceRay ir(p, q, xi, r, c);
     if (!ir.widen(xi, p.bounds, limit)) return false;
     Best best{limit};
-    uint64_t visits = 0;
+    uint64_t boxes = 0;
     if (c.any_hit) {
         InnerAny walk{ir, best, to_float_up(limit)};
-        walk_bvh(p.geometry->nodes.data(), walk, visits);
+        walk_bvh(p.geometry->nodes.data(), walk, boxes);
     } else {
         InnerClosest walk{ir, best, to_float_up(limit)};
-        walk_bvh(p.geometry->nodes.data(), walk, visits);
+        walk_bvh(p.geometry->nodes.data(), walk, boxes);
     }
-    c.boxes += 4 * visits;
+    c.boxes += boxes;
     if (!best.hit) return false;
     // The inner hit, seen from the top level: the instance's id, the member's in inner_*.
     h = best.h;
@@ -382,8 +386,8 @@ void build_prototype(Prototype& p, const OtherBuild& b, uint32_t index) {
             p.has_opaque = true;
     }
     if (!pg.nodes.empty()) {
-        const Bvh4Node& root = pg.nodes[0];
-        for (int i = 0; i < 4; ++i) {
+        const BvhWideNode& root = pg.nodes[0];
+        for (int i = 0; i < kBvhWidth; ++i) {
             if (!(root.lo[0][i] <= root.hi[0][i])) continue;  // an unused lane
             p.bounds.extend(Vec3f(root.lo[0][i], root.lo[1][i], root.lo[2][i]));
             p.bounds.extend(Vec3f(root.hi[0][i], root.hi[1][i], root.hi[2][i]));

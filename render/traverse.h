@@ -1,4 +1,4 @@
-// The one walk of the 4-wide BVH (Bvh4Node) that every query uses: the stack, the order children
+// The one walk of the wide BVH (BvhWideNode) that every query uses: the stack, the order children
 // are visited in and the dispatch to leaves are written here once. What a query does at an inner
 // node (which children to enter: one ray's slab test, a packet's interval test, a shaft's plane
 // test) and at a leaf (test primitives, end the walk) is a policy passed in and inlined at
@@ -32,31 +32,35 @@ enum class WalkOrder {
 struct BvhChild {
     uint32_t first, count;
     float t;
-    static BvhChild at(const Bvh4Node& node, uint32_t, int i, float t) {
-        return {node.first[i], node.count[i], t};
+    static BvhChild at(const BvhWideNode& node, uint32_t, int i, float t) {
+        return {node.first(i), node.count(i), t};
     }
 };
 
-// The same, and where its box is (lane box & 3 of node box >> 2), for queries that test a leaf's
-// box again ray by ray.
+// The same, and where its box is (lane box & kLaneMask of node box >> kLaneBits), for queries
+// that test a leaf's box again ray by ray.
+// Bits of BvhChildAt::box that name the lane.
+inline constexpr int kLaneBits = std::bit_width(static_cast<unsigned>(kBvhWidth - 1));
+inline constexpr uint32_t kLaneMask = (1u << kLaneBits) - 1;
+
 struct BvhChildAt {
     uint32_t first, count;
     float t;
     uint32_t box;
-    static BvhChildAt at(const Bvh4Node& node, uint32_t index, int i, float t) {
-        return {node.first[i], node.count[i], t, index << 2 | static_cast<uint32_t>(i)};
+    static BvhChildAt at(const BvhWideNode& node, uint32_t index, int i, float t) {
+        return {node.first(i), node.count(i), t, index << kLaneBits | static_cast<uint32_t>(i)};
     }
 };
 
-// Each level of the tree leaves at most three children waiting.
-inline constexpr int kWalkStack = 3 * kMaxBvhDepth + 1;
+// Each level of the tree leaves at most kBvhWidth - 1 children waiting.
+inline constexpr int kWalkStack = (kBvhWidth - 1) * kMaxBvhDepth + 1;
 
 namespace detail {
 
 // The entered children of `node` (bits of mask) that wait on the stack, in the order they are
 // to be visited (the next one deepest), and returns the one to visit now.
 template <WalkOrder kOrder, class Child>
-[[gnu::always_inline]] inline Child push_children(const Bvh4Node& node, uint32_t index, int mask,
+[[gnu::always_inline]] inline Child push_children(const BvhWideNode& node, uint32_t index, int mask,
                                                   const float* tn, Child* stack, int& sp) {
     if constexpr (kOrder == WalkOrder::NearestFirst) {
         // Nearest next; the others wait, farthest deepest, with their entry distances. One or
@@ -71,7 +75,7 @@ template <WalkOrder kOrder, class Child>
             stack[sp++] = Child::at(node, index, far, tn[far]);
             return Child::at(node, index, near, tn[near]);
         }
-        Child e[4];
+        Child e[kBvhWidth];
         int m = 0;
         for (; mask != 0; mask &= mask - 1) {
             const int k = std::countr_zero(static_cast<unsigned>(mask));
@@ -98,11 +102,11 @@ template <WalkOrder kOrder, class Child>
 }  // namespace detail
 
 // Walks the non-empty tree `nodes` (node 0 holds the root's children) for one query and returns
-// true when the query ended it early. `visits` counts the nodes whose children were tested. The
-// query Q provides:
+// true when the query ended it early. `boxes` counts the child boxes tested: the children (lanes
+// that hold one) of every node visited. The query Q provides:
 //   static constexpr WalkOrder kOrder;
 //   using Child = BvhChild or BvhChildAt;
-//   int enter(const Bvh4Node& node, uint32_t index, float* t_entry)
+//   int enter(const BvhWideNode& node, uint32_t index, float* t_entry)
 //       inner_fn: bit i set to visit child i of nodes[index]; t_entry[i] its entry distance
 //       (any value when the order ignores distances);
 //   bool leaf(const Child& c)     leaf_fn: true ends the walk;
@@ -111,33 +115,32 @@ template <WalkOrder kOrder, class Child>
 //   void prefetch_leaf(uint32_t first) const   optional: fetch the data of a leaf that will be
 //                                 visited (a hint; it must not change what the query finds).
 template <class Q>
-[[gnu::always_inline]] inline bool walk_bvh(const Bvh4Node* nodes, Q& q, uint64_t& visits) {
+[[gnu::always_inline]] inline bool walk_bvh(const BvhWideNode* nodes, Q& q, uint64_t& boxes) {
     using Child = typename Q::Child;
     Child stack[kWalkStack];
     int sp = 0;
     uint32_t index = 0;
     for (;;) {
-        const Bvh4Node& node = nodes[index];
-        alignas(16) float tn[4];
+        const BvhWideNode& node = nodes[index];
+        alignas(16) float tn[kBvhWidth];
         int mask = q.enter(node, index, tn);
-        ++visits;
+        boxes += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(node.child_mask())));
         // The children to be visited, fetched while the walk goes on: those that wait on the
         // stack are then in cache when popped (inner nodes; leaves' data when the query says
         // where it is).
         for (int m = mask; m != 0; m &= m - 1) {
             const int i = std::countr_zero(static_cast<unsigned>(m));
-            if (node.count[i] == 0) {
-                const char* p = reinterpret_cast<const char*>(&nodes[node.first[i]]);
-                __builtin_prefetch(p);
-                __builtin_prefetch(p + 64);
-            } else if constexpr (requires { q.prefetch_leaf(node.first[i]); }) {
-                q.prefetch_leaf(node.first[i]);
+            if (node.count(i) == 0) {
+                const char* p = reinterpret_cast<const char*>(&nodes[node.first(i)]);
+                for (size_t line = 0; line < sizeof(BvhWideNode); line += 64) __builtin_prefetch(p + line);
+            } else if constexpr (requires { q.prefetch_leaf(node.first(i)); }) {
+                q.prefetch_leaf(node.first(i));
             }
         }
         if constexpr (Q::kOrder == WalkOrder::LeavesFirst) {
             for (int m = mask; m != 0; m &= m - 1) {
                 const int i = std::countr_zero(static_cast<unsigned>(m));
-                if (node.count[i] == 0) continue;
+                if (node.count(i) == 0) continue;
                 mask &= ~(1 << i);
                 if (q.leaf(Child::at(node, index, i, tn[i]))) return true;
             }

@@ -84,8 +84,8 @@ TEST_CASE("R20 slab test: no false misses for rays aimed at box faces from far a
             Vec3 c = rng.in_box(Vec3(-1), Vec3(1));
             Vec3 e(rng.log_uniform(-3, 1), rng.log_uniform(-3, 1), rng.log_uniform(-3, 1));
             Bounds3f b = Bounds3f::around(c - e, c + e);
-            Bvh4Node node{};
-            for (int lane = 0; lane < 4; ++lane)
+            BvhWideNode node{};
+            for (int lane = 0; lane < kBvhWidth; ++lane)
                 for (int a = 0; a < 3; ++a) {
                     node.lo[a][lane] = lane == 0 ? b.lo[a] : std::numeric_limits<float>::infinity();
                     node.hi[a][lane] = lane == 0 ? b.hi[a] : -std::numeric_limits<float>::infinity();
@@ -102,8 +102,8 @@ TEST_CASE("R20 slab test: no false misses for rays aimed at box faces from far a
             Vec3 o = p - distance * d;
             RayBoxTest test;
             test.init(o, d);
-            float t[4];
-            if (!(test.hit4(node, std::numeric_limits<float>::infinity(), t) & 1)) ++misses;
+            float t[kBvhWidth];
+            if (!(test.hit(node, std::numeric_limits<float>::infinity(), t) & 1)) ++misses;
         }
         INFO("distance " << distance);
         CHECK(misses == 0);
@@ -257,7 +257,7 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
         BvhOptions opt;
         opt.threads = threads;
         Bvh bvh = build_bvh(boxes, opt);
-        std::vector<Bvh4Node> wide = to_bvh4(bvh.nodes);
+        std::vector<BvhWideNode> wide = to_bvh_wide(bvh.nodes);
         return std::make_pair(std::move(bvh), std::move(wide));
     };
     auto [one, one4] = tree(1);
@@ -268,7 +268,7 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
         CHECK(other.depth == one.depth);
         CHECK(other.order == one.order);
         REQUIRE(other4.size() == one4.size());
-        CHECK(std::memcmp(other4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
+        CHECK(std::memcmp(other4.data(), one4.data(), one4.size() * sizeof(BvhWideNode)) == 0);
     }
     // Bounds given chunk by chunk build the same tree as a vector of them, each chunk asked once.
     BvhOptions opt;
@@ -290,9 +290,9 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
     CHECK(misaligned.load() == 0);
     for (const auto& a : asked) CHECK(a.load() == 1);
     CHECK(given.order == one.order);
-    const auto given4 = to_bvh4(given.nodes);
+    const auto given4 = to_bvh_wide(given.nodes);
     REQUIRE(given4.size() == one4.size());
-    CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(Bvh4Node)) == 0);
+    CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(BvhWideNode)) == 0);
 }
 
 TEST_CASE("R52 a large mesh's bad faces are reported in face order, whatever the thread count") {

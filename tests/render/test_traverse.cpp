@@ -22,11 +22,11 @@ constexpr float kInfF = std::numeric_limits<float>::infinity();
 
 struct Boxes {
     std::vector<Bounds3f> bounds;
-    std::vector<Bvh4Node> nodes;
+    std::vector<BvhWideNode> nodes;
 };
 
 // n random boxes of assorted sizes in [−10, 10]³, and their 4-wide BVH.
-Boxes random_tree(std::mt19937_64& gen, int n, int max_leaf) {
+Boxes random_tree(std::mt19937_64& gen, int n, int max_leaf, bool merge = false) {
     std::uniform_real_distribution<float> pos(-10, 10), size(0.01f, 3);
     Boxes b;
     for (int i = 0; i < n; ++i) {
@@ -38,7 +38,8 @@ Boxes random_tree(std::mt19937_64& gen, int n, int max_leaf) {
     }
     BvhOptions options;
     options.max_leaf = max_leaf;
-    b.nodes = to_bvh4(build_bvh(b.bounds, options).nodes);
+    b.nodes = to_bvh_wide(build_bvh(b.bounds, options).nodes,
+                          merge ? WideLeafFn([](uint32_t, uint32_t) { return true; }) : WideLeafFn());
     return b;
 }
 
@@ -56,13 +57,14 @@ using Leaf = std::pair<uint32_t, uint32_t>;  // first, count
 // The leaves (by their order range) whose own box the ray enters within t_limit, found by testing
 // every leaf lane of every node. A box's slab test never rejects a ray its descendant's accepts
 // (rounded products are monotone), so a walk without pruning must visit exactly these.
-std::vector<Leaf> brute_force_leaves(const std::vector<Bvh4Node>& nodes, const RayBoxTest& r, float t_limit) {
+std::vector<Leaf> brute_force_leaves(const std::vector<BvhWideNode>& nodes, const RayBoxTest& r,
+                                     float t_limit) {
     std::vector<Leaf> out;
-    for (const Bvh4Node& node : nodes) {
-        alignas(16) float tn[4];
-        const int mask = r.hit4(node, t_limit, tn);
-        for (int i = 0; i < 4; ++i)
-            if ((mask >> i & 1) && node.count[i] > 0) out.push_back({node.first[i], node.count[i]});
+    for (const BvhWideNode& node : nodes) {
+        alignas(16) float tn[kBvhWidth];
+        const int mask = r.hit(node, t_limit, tn);
+        for (int i = 0; i < kBvhWidth; ++i)
+            if ((mask >> i & 1) && node.count(i) > 0) out.push_back({node.first(i), node.count(i)});
     }
     std::sort(out.begin(), out.end());
     return out;
@@ -77,7 +79,7 @@ struct Recorder {
     float limit;
     std::vector<Leaf> leaves;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.hit(node, limit, tn); }
     bool leaf(const Child& c) {
         leaves.push_back({c.first, c.count});
         return static_cast<int>(leaves.size()) == kStopAt;
@@ -86,7 +88,7 @@ struct Recorder {
 };
 
 template <WalkOrder kWalkOrder, int kStopAt = 0>
-std::pair<bool, std::vector<Leaf>> record(const std::vector<Bvh4Node>& nodes, const RayBoxTest& r,
+std::pair<bool, std::vector<Leaf>> record(const std::vector<BvhWideNode>& nodes, const RayBoxTest& r,
                                           float limit, uint64_t& visits) {
     Recorder<kWalkOrder, kStopAt> q{r, limit, {}};
     const bool stopped = walk_bvh(nodes.data(), q, visits);
@@ -102,7 +104,7 @@ struct NearestLeaf {
     float limit = kInfF;
     int leaves = 0;
 
-    int enter(const Bvh4Node& node, uint32_t, float* tn) const { return r.hit4(node, limit, tn); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.hit(node, limit, tn); }
     bool leaf(const Child& c) {
         ++leaves;
         limit = std::min(limit, c.t);
@@ -116,7 +118,7 @@ struct NearestLeaf {
 TEST_CASE("every walk order visits exactly the leaves a brute-force slab test selects, each once") {
     std::mt19937_64 gen(20261125);
     for (int tree = 0; tree < 30; ++tree) {
-        const Boxes b = random_tree(gen, 1 + 37 * tree, 1 + tree % 4);
+        const Boxes b = random_tree(gen, 1 + 37 * tree, 1 + tree % 4, tree % 2 == 1);
         REQUIRE(!b.nodes.empty());
         for (int k = 0; k < 300; ++k) {
             const RayBoxTest r = random_ray(gen);
@@ -133,6 +135,43 @@ TEST_CASE("every walk order visits exactly the leaves a brute-force slab test se
                 std::sort(got->begin(), got->end());
                 REQUIRE(*got == expect);  // sorted equal: each leaf exactly once
             }
+        }
+    }
+}
+
+TEST_CASE("the wide tree's leaves cover every primitive once; small subtrees merge only when allowed") {
+    std::mt19937_64 gen(5);
+    for (int n : {1, 2, 3, 9, 100, 2000}) {
+        for (bool merge : {false, true}) {
+            INFO(n << " boxes, merge " << merge);
+            const Boxes b = random_tree(gen, n, 1, merge);
+            std::vector<int> covered(static_cast<size_t>(n), 0);
+            uint32_t largest = 0;
+            size_t inner_lanes = 0;
+            for (const BvhWideNode& node : b.nodes)
+                for (int i = 0; i < kBvhWidth; ++i) {
+                    if ((node.child_mask() >> i & 1) == 0) {
+                        CHECK(node.child[i] == 0);
+                        CHECK_FALSE(node.lo[0][i] <= node.hi[0][i]);
+                        continue;
+                    }
+                    if (node.count(i) == 0) {
+                        ++inner_lanes;
+                        REQUIRE(node.first(i) > 0);
+                        REQUIRE(node.first(i) < b.nodes.size());
+                        continue;
+                    }
+                    largest = std::max(largest, node.count(i));
+                    for (uint32_t k = node.first(i); k < node.first(i) + node.count(i); ++k) ++covered.at(k);
+                }
+            CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
+            CHECK(inner_lanes == b.nodes.size() - 1);  // every node but the root is one lane's child
+            // Built with one primitive a leaf: only a merge makes larger ones, and never past 3.
+            if (merge && n >= 3)
+                CHECK(largest > 1);
+            else
+                CHECK(largest == 1);
+            CHECK(largest <= 3);
         }
     }
 }
@@ -167,11 +206,11 @@ TEST_CASE("a nearest-first walk that shrinks its limit finds the nearest leaf an
         for (int k = 0; k < 300; ++k) {
             const RayBoxTest r = random_ray(gen);
             float nearest = kInfF;
-            for (const Bvh4Node& node : b.nodes) {
-                alignas(16) float tn[4];
-                const int mask = r.hit4(node, kInfF, tn);
-                for (int i = 0; i < 4; ++i)
-                    if ((mask >> i & 1) && node.count[i] > 0) {
+            for (const BvhWideNode& node : b.nodes) {
+                alignas(16) float tn[kBvhWidth];
+                const int mask = r.hit(node, kInfF, tn);
+                for (int i = 0; i < kBvhWidth; ++i)
+                    if ((mask >> i & 1) && node.count(i) > 0) {
                         nearest = std::min(nearest, tn[i]);
                         ++entered;
                     }
