@@ -7,6 +7,7 @@
 // walk its top level with it and call it again from a leaf.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -57,6 +58,13 @@ inline constexpr int kWalkStack = (kBvhWidth - 1) * kMaxBvhDepth + 1;
 
 namespace detail {
 
+// The number of bits set in each lane mask (std::popcount is a library call on baseline x86-64).
+inline constexpr auto kChildCount = [] {
+    std::array<uint8_t, 1 << kBvhWidth> n{};
+    for (size_t m = 0; m < n.size(); ++m) n[m] = static_cast<uint8_t>(std::popcount(m));
+    return n;
+}();
+
 // The entered children of `node` (bits of mask) that wait on the stack, in the order they are
 // to be visited (the next one deepest), and returns the one to visit now.
 template <WalkOrder kOrder, class Child>
@@ -75,20 +83,26 @@ template <WalkOrder kOrder, class Child>
             stack[sp++] = Child::at(node, index, far, tn[far]);
             return Child::at(node, index, near, tn[near]);
         }
-        Child e[kBvhWidth];
+        // Three or more: sorted by (distance, lane) as one integer key each. Entry distances are
+        // never negative or NaN (hit() starts them at 0), so their bits order as the floats do.
+        uint64_t key[kBvhWidth];
         int m = 0;
         for (; mask != 0; mask &= mask - 1) {
             const int k = std::countr_zero(static_cast<unsigned>(mask));
-            const Child x = Child::at(node, index, k, tn[k]);
+            const uint64_t x = uint64_t{std::bit_cast<uint32_t>(tn[k])} << 8 | static_cast<uint64_t>(k);
             int j = m++;
-            while (j > 0 && e[j - 1].t > x.t) {
-                e[j] = e[j - 1];
+            while (j > 0 && key[j - 1] > x) {
+                key[j] = key[j - 1];
                 --j;
             }
-            e[j] = x;
+            key[j] = x;
         }
-        for (int k = m - 1; k > 0; --k) stack[sp++] = e[k];
-        return e[0];
+        for (int k = m - 1; k > 0; --k) {
+            const int lane = static_cast<int>(key[k] & 0xff);
+            stack[sp++] = Child::at(node, index, lane, tn[lane]);
+        }
+        const int lane = static_cast<int>(key[0] & 0xff);
+        return Child::at(node, index, lane, tn[lane]);
     } else {
         const int top = 31 - std::countl_zero(static_cast<unsigned>(mask));
         for (int rest = mask & ~(1 << top); rest != 0; rest &= rest - 1) {
@@ -124,7 +138,7 @@ template <class Q>
         const BvhWideNode& node = nodes[index];
         alignas(16) float tn[kBvhWidth];
         int mask = q.enter(node, index, tn);
-        boxes += static_cast<uint64_t>(std::popcount(static_cast<unsigned>(node.child_mask())));
+        boxes += detail::kChildCount[node.child_mask()];
         // The children to be visited, fetched while the walk goes on: those that wait on the
         // stack are then in cache when popped (inner nodes; leaves' data when the query says
         // where it is).
