@@ -50,9 +50,11 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
 // takes a binary node's two children and opens the one of largest area that is inner until it
 // holds kBvhWidth children (render/bvh_wide.cpp). A subtree of a few primitives over
 // order[first, first + count) becomes one leaf when mergeable(first, count) says so (cheap
-// primitives: triangles); without the function, leaves stay as built.
+// primitives: triangles); without the function, leaves stay as built. Subtrees are written on
+// `threads` threads (0 = all cores); the result does not depend on their number.
 using WideLeafFn = std::function<bool(uint32_t first, uint32_t count)>;
-std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable = {});
+std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable = {},
+                                     int threads = 1);
 
 // Asks the kernel to back the 2 MiB-aligned part of a large, not yet touched buffer (a vector
 // just reserved) with huge pages. On VMs a 4 KiB page fault is expensive (measured 2.9 ms per MiB

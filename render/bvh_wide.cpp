@@ -3,6 +3,7 @@
 
 #include "render/bvh.h"
 #include "render/limits.h"
+#include "render/parallel.h"
 
 namespace wsd::render {
 
@@ -22,29 +23,32 @@ float node_area(const BvhNode& n) {
 // primitive test or two more.
 inline constexpr uint32_t kMergeLeaf = 3;
 
-// Per binary node: the order range its subtree covers, and whether it is a leaf of the wide tree.
+// Per binary node: how many primitives its subtree holds (bits 0-30), and whether it is a leaf of
+// the wide tree (bit 31).
 struct Ranges {
-    std::vector<uint32_t> first, size;
-    std::vector<uint8_t> leaf_;
-    Ranges(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable)
-        : first(nodes.size()), size(nodes.size()), leaf_(nodes.size()) {
+    static constexpr uint32_t kLeafBit = 1u << 31;
+    std::vector<uint32_t> size_;
+    Ranges(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable) : size_(nodes.size()) {
         fill(nodes, mergeable, 0);
     }
-    void fill(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, uint32_t n) {
+    uint32_t fill(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, uint32_t n) {
         if (nodes[n].count > 0) {
-            first[n] = nodes[n].first;
-            size[n] = nodes[n].count;
-            leaf_[n] = 1;
-            return;
+            size_[n] = nodes[n].count | kLeafBit;
+            return nodes[n].count;
         }
-        const uint32_t a = nodes[n].first, b = a + 1;
-        fill(nodes, mergeable, a);
-        fill(nodes, mergeable, b);
-        first[n] = first[a];
-        size[n] = size[a] + size[b];
-        leaf_[n] = size[n] <= kMergeLeaf && mergeable && mergeable(first[n], size[n]);
+        const uint32_t size =
+            fill(nodes, mergeable, nodes[n].first) + fill(nodes, mergeable, nodes[n].first + 1);
+        const bool leaf = size <= kMergeLeaf && mergeable && mergeable(first(nodes, n), size);
+        size_[n] = size | (leaf ? kLeafBit : 0);
+        return size;
     }
-    bool leaf(const std::vector<BvhNode>&, uint32_t n) const { return leaf_[n] != 0; }
+    bool leaf(const std::vector<BvhNode>&, uint32_t n) const { return (size_[n] & kLeafBit) != 0; }
+    uint32_t size(uint32_t n) const { return size_[n] & ~kLeafBit; }
+    // The start of the order range of n's subtree: its leftmost leaf's.
+    static uint32_t first(const std::vector<BvhNode>& nodes, uint32_t n) {
+        while (nodes[n].count == 0) n = nodes[n].first;
+        return nodes[n].first;
+    }
 };
 
 // The children of the wide node for inner node `n`: its two children, opening the largest inner
@@ -67,7 +71,7 @@ int wide_children(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n
     return count;
 }
 
-// The number of wide nodes emit_wide makes for inner node `n`.
+// The number of wide nodes emit_wide writes for inner node `n`.
 size_t count_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
@@ -97,42 +101,81 @@ void set_lane(BvhWideNode& node, int i, const BvhNode& child) {
     node.set_child(i, child.first, child.count);
 }
 
-// Emits the wide node for inner node `n` and, depth first, the nodes below it; returns its index.
-uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n,
-                   std::vector<BvhWideNode>& out) {
+// Writes the wide node for inner node `n` at out[at] and, depth first, the nodes below it from
+// out[at + 1] on; returns the index after the last.
+uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+                   uint32_t at) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
-    const uint32_t index = static_cast<uint32_t>(out.size());
-    out.push_back(BvhWideNode{});
     BvhWideNode node = empty_wide_node();
+    uint32_t next = at + 1;
     for (int i = 0; i < count; ++i) {
-        const BvhNode& k = nodes[kids[i]];
-        set_lane(node, i, k);
-        if (r.leaf(nodes, kids[i]))
-            node.set_child(i, r.first[kids[i]], r.size[kids[i]]);
-        else
-            node.set_child(i, emit_wide(nodes, r, kids[i], out), 0);
+        set_lane(node, i, nodes[kids[i]]);
+        if (r.leaf(nodes, kids[i])) {
+            node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
+        } else {
+            node.set_child(i, next, 0);
+            next = emit_wide(nodes, r, kids[i], out, next);
+        }
     }
-    out[index] = node;
-    return index;
+    out[at] = node;
+    return next;
+}
+
+// A subtree that emit_wide writes on its own: binary node n's wide nodes go to out[at, ...).
+struct WideJob {
+    uint32_t n, at;
+};
+
+// Writes the wide node for inner node `n` at out[at]; its inner children's subtrees, placed where
+// a depth-first emit_wide puts them, are written here down to `levels` more levels and left to
+// `jobs` below that.
+void place_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out, uint32_t at,
+                int levels, std::vector<WideJob>& jobs) {
+    uint32_t kids[kBvhWidth];
+    const int count = wide_children(nodes, r, n, kids);
+    BvhWideNode node = empty_wide_node();
+    uint32_t next = at + 1;
+    for (int i = 0; i < count; ++i) {
+        set_lane(node, i, nodes[kids[i]]);
+        if (r.leaf(nodes, kids[i])) {
+            node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
+            continue;
+        }
+        node.set_child(i, next, 0);
+        if (levels > 0)
+            place_wide(nodes, r, kids[i], out, next, levels - 1, jobs);
+        else
+            jobs.push_back({kids[i], next});
+        next += static_cast<uint32_t>(count_wide(nodes, r, kids[i]));
+    }
+    out[at] = node;
 }
 
 }  // namespace
 
-std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable) {
+std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable,
+                                     int threads) {
     std::vector<BvhWideNode> out;
     if (nodes.empty()) return out;
-    // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
-    // no huge pages (see prefer_huge_pages).
-    const Ranges r(nodes, mergeable);
-    out.reserve(nodes[0].count > 0 ? 1 : count_wide(nodes, r, 0));
     if (nodes[0].count > 0) {
         BvhWideNode root = empty_wide_node();
         set_lane(root, 0, nodes[0]);
         out.push_back(root);
-    } else {
-        emit_wide(nodes, r, 0, out);
+        return out;
     }
+    // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
+    // no huge pages (see prefer_huge_pages). The top two levels are written here; the subtrees
+    // below them, each to its own depth-first place, in parallel: the same nodes as one
+    // depth-first walk, whatever the thread count.
+    const Ranges r(nodes, mergeable);
+    out.resize(count_wide(nodes, r, 0));
+    std::vector<WideJob> jobs;
+    place_wide(nodes, r, 0, out.data(), 0, 1, jobs);
+    ParallelOptions options;
+    options.threads = threads;
+    parallel_for(jobs.size(), options,
+                 [&](size_t j, int) { emit_wide(nodes, r, jobs[j].n, out.data(), jobs[j].at); });
     return out;
 }
 

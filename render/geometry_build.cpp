@@ -465,11 +465,14 @@ void Builder::finish_bvh() {
     };
     Bvh bvh = build_bvh(entries.size(), bound, opt);
     // Subtrees of triangles only may merge into one wide leaf; other primitives cost more.
-    g.nodes = to_bvh_wide(bvh.nodes, [&](uint32_t first, uint32_t count) {
-        for (uint32_t k = first; k < first + count; ++k)
-            if (!is_triangle(bvh.order[k])) return false;
-        return true;
-    });
+    g.nodes = to_bvh_wide(
+        bvh.nodes,
+        [&](uint32_t first, uint32_t count) {
+            for (uint32_t k = first; k < first + count; ++k)
+                if (!is_triangle(bvh.order[k])) return false;
+            return true;
+        },
+        threads);
     g.bvh_depth = bvh.depth;
     // Stored in leaf order in fixed chunks on every thread: each chunk's first slot of each kind
     // is the count of that kind in the chunks before it.

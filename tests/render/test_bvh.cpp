@@ -243,7 +243,7 @@ TEST_CASE("R52 the BVH build does not depend on the thread count") {
     }
 }
 
-TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 threads") {
+TEST_CASE("R52 the built tree and its wide form are the same, node for node, with 1, 2 and 3 threads") {
     // Enough boxes for subtrees on other threads at several levels, clustered and of mixed
     // sizes so that the splits are uneven.
     Rng rng(5252);
@@ -253,11 +253,12 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
                i % 5 == 0 ? rng.uniform(0, 0.1) : rng.uniform(0, 60));
         boxes.push_back(Bounds3f::around(c, c + Vec3(rng.log_uniform(-3, 0.5))));
     }
+    const WideLeafFn merge_all = [](uint32_t, uint32_t) { return true; };
     auto tree = [&](int threads) {
         BvhOptions opt;
         opt.threads = threads;
         Bvh bvh = build_bvh(boxes, opt);
-        std::vector<BvhWideNode> wide = to_bvh_wide(bvh.nodes);
+        std::vector<BvhWideNode> wide = to_bvh_wide(bvh.nodes, merge_all, threads);
         return std::make_pair(std::move(bvh), std::move(wide));
     };
     auto [one, one4] = tree(1);
@@ -290,7 +291,7 @@ TEST_CASE("R52 the built tree is the same, node for node, with 1, 2 and 3 thread
     CHECK(misaligned.load() == 0);
     for (const auto& a : asked) CHECK(a.load() == 1);
     CHECK(given.order == one.order);
-    const auto given4 = to_bvh_wide(given.nodes);
+    const auto given4 = to_bvh_wide(given.nodes, merge_all);
     REQUIRE(given4.size() == one4.size());
     CHECK(std::memcmp(given4.data(), one4.data(), one4.size() * sizeof(BvhWideNode)) == 0);
 }
