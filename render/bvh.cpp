@@ -175,14 +175,19 @@ struct Binning {
     }
 };
 
-// Trivial on purpose: find_split resets only the bins it uses.
 struct Bin {
     Box box;
     uint32_t count;
 };
 
+// Left uninitialised on purpose (a union with an empty constructor: Box's own initialisers
+// would write all 3 × kMaxBins bins for every node, most of a small node's binning time);
+// bin_range resets only the bins it uses.
 struct BinSet {
-    Bin bins[3][kMaxBins];
+    BinSet() {}
+    union {
+        Bin bins[3][kMaxBins];
+    };
     Bin* operator[](int a) { return bins[a]; }
     const Bin* operator[](int a) const { return bins[a]; }
 };
