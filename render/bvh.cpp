@@ -139,6 +139,7 @@ constexpr int kMaxBins = 32;
 // whatever the thread count, so the split (and every bound, down to the sign of a zero) is too.
 constexpr uint32_t kChunkedBinMin = 1u << 16;
 constexpr uint32_t kBinChunks = 32;
+constexpr uint32_t kTwoSetMin = 64;  // bin_range's second set of bins pays from this many references
 
 struct Shared {
     std::vector<Ref>& refs;
@@ -214,9 +215,6 @@ void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t
     // the same bin, and with one set each update would wait for the previous one's stores. Bins
     // are merged exactly (min, max, integer counts), so the split is the same as with one set.
     const int nb = binning.nb;
-    BinSet other;
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
     auto add = [&binning](BinSet& set, const Ref& ref) {
         F4 lo = ref.lo4(), hi = ref.hi4();
         int k[3];
@@ -227,6 +225,20 @@ void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t
             ++b.count;
         }
     };
+    if (end - begin < kTwoSetMin) {
+        // Few references: one set, the first, third, ... references before the second, fourth,
+        // ... ones. That gives the same bins as two sets merged: min and max keep, of equal
+        // values (+0 and -0), the later operand, which is the later reference in this order,
+        // and the second set's when merged.
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < nb; ++k) out[a][k] = Bin{Box{}, 0};
+        for (uint32_t i = begin; i < end; i += 2) add(out, s.refs[i]);
+        for (uint32_t i = begin + 1; i < end; i += 2) add(out, s.refs[i]);
+        return;
+    }
+    BinSet other;
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
     uint32_t i = begin;
     for (; i + 1 < end; i += 2) {
         add(out, s.refs[i]);
