@@ -110,11 +110,19 @@ struct Box {
         return h[a] - l[a];
     }
     float half_area() const {
+#if defined(__SSE2__)
+        // The same operations in the same order as below, without storing the box.
+        if (_mm_comigt_ss(lo.v, hi.v)) return 0;
+        const __m128 d = _mm_sub_ps(hi.v, lo.v);                                        // x y z
+        const __m128 p = _mm_mul_ps(d, _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1)));  // xy yz zx
+        return _mm_cvtss_f32(p) + _mm_cvtss_f32(_mm_shuffle_ps(p, p, 1)) + _mm_cvtss_f32(_mm_movehl_ps(p, p));
+#else
         float l[4], h[4];
         get(l, h);
         if (l[0] > h[0]) return 0;
         float x = h[0] - l[0], y = h[1] - l[1], z = h[2] - l[2];
         return x * y + y * z + z * x;
+#endif
     }
 };
 
@@ -131,6 +139,7 @@ constexpr int kMaxBins = 32;
 // whatever the thread count, so the split (and every bound, down to the sign of a zero) is too.
 constexpr uint32_t kChunkedBinMin = 1u << 16;
 constexpr uint32_t kBinChunks = 32;
+constexpr uint32_t kTwoSetMin = 64;  // bin_range's second set of bins pays from this many references
 
 struct Shared {
     std::vector<Ref>& refs;
@@ -175,14 +184,19 @@ struct Binning {
     }
 };
 
-// Trivial on purpose: find_split resets only the bins it uses.
 struct Bin {
     Box box;
     uint32_t count;
 };
 
+// Left uninitialised on purpose (a union with an empty constructor: Box's own initialisers
+// would write all 3 × kMaxBins bins for every node, most of a small node's binning time);
+// bin_range resets only the bins it uses.
 struct BinSet {
-    Bin bins[3][kMaxBins];
+    BinSet() {}
+    union {
+        Bin bins[3][kMaxBins];
+    };
     Bin* operator[](int a) { return bins[a]; }
     const Bin* operator[](int a) const { return bins[a]; }
 };
@@ -201,9 +215,6 @@ void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t
     // the same bin, and with one set each update would wait for the previous one's stores. Bins
     // are merged exactly (min, max, integer counts), so the split is the same as with one set.
     const int nb = binning.nb;
-    BinSet other;
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
     auto add = [&binning](BinSet& set, const Ref& ref) {
         F4 lo = ref.lo4(), hi = ref.hi4();
         int k[3];
@@ -214,6 +225,20 @@ void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t
             ++b.count;
         }
     };
+    if (end - begin < kTwoSetMin) {
+        // Few references: one set, the first, third, ... references before the second, fourth,
+        // ... ones. That gives the same bins as two sets merged: min and max keep, of equal
+        // values (+0 and -0), the later operand, which is the later reference in this order,
+        // and the second set's when merged.
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < nb; ++k) out[a][k] = Bin{Box{}, 0};
+        for (uint32_t i = begin; i < end; i += 2) add(out, s.refs[i]);
+        for (uint32_t i = begin + 1; i < end; i += 2) add(out, s.refs[i]);
+        return;
+    }
+    BinSet other;
+    for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
     uint32_t i = begin;
     for (; i + 1 < end; i += 2) {
         add(out, s.refs[i]);
