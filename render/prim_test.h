@@ -86,6 +86,11 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
 }
 
+// True for an entry of Impl::order that is a triangle.
+inline bool is_triangle(uint32_t e) {
+    return ((e >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle);
+}
+
 // A triangle whose vertices are at hand, counted.
 [[gnu::always_inline]] inline bool test_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
                                                  const Vec3f& v2, double limit, Counters& c, double& t,
