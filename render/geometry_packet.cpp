@@ -102,10 +102,60 @@ struct PacketClosestHit {
     float limit_max = -1;
     uint64_t leaf_boxes = 0;
 
+    // Triangle edge functions two rays at a time (double pairs) when every ray of the packet
+    // has the same axes (RayPre::kx, ky, kz): per ray the operations of triangle_edges, so the
+    // rays they reject are those it would reject, and the others take the full test.
+    bool paired = true;
+    int kx = 0, ky = 1, kz = 2;
+    alignas(16) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays];
+
     PacketClosestHit(const Impl& g_, const Packet<Q>& p_, Best* best_, uint32_t live, Counters& c_)
         : g(g_), p(p_), best(best_), c(c_) {
         for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
         load_limits();
+        kx = p.pre[0]->kx, ky = p.pre[0]->ky, kz = p.pre[0]->kz;
+        for (int k = 0; k < kRays; ++k) {
+            const RayPre& r = *p.pre[k];
+            paired = paired && r.kx == kx && r.ky == ky && r.kz == kz;
+            ox[k] = r.ox, oy[k] = r.oy, oz[k] = r.oz, sx[k] = r.sx, sy[k] = r.sy;
+        }
+    }
+
+    // The rays of `lanes` whose edge functions for the triangle do not rule it out (those
+    // with an exactly zero edge function are kept: triangle_edges recomputes it).
+    uint32_t edge_candidates(const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t lanes) const {
+        const float* a[3] = {glm::value_ptr(v0), glm::value_ptr(v1), glm::value_ptr(v2)};
+        __m128d vx[3], vy[3], vz[3];
+        for (int i = 0; i < 3; ++i) {
+            vx[i] = _mm_set1_pd(static_cast<double>(a[i][kx]));
+            vy[i] = _mm_set1_pd(static_cast<double>(a[i][ky]));
+            vz[i] = _mm_set1_pd(static_cast<double>(a[i][kz]));
+        }
+        const __m128d zero = _mm_setzero_pd();
+        uint32_t keep = 0;
+        for (int j = 0; j < kRays; j += 2) {
+            if ((lanes >> j & 3u) == 0) continue;
+            const __m128d o_x = _mm_load_pd(ox + j), o_y = _mm_load_pd(oy + j), o_z = _mm_load_pd(oz + j);
+            const __m128d s_x = _mm_load_pd(sx + j), s_y = _mm_load_pd(sy + j);
+            __m128d x[3], y[3];
+            for (int i = 0; i < 3; ++i) {
+                const __m128d pz = _mm_sub_pd(vz[i], o_z);
+                x[i] = _mm_add_pd(_mm_sub_pd(vx[i], o_x), opaque(_mm_mul_pd(s_x, pz)));
+                y[i] = _mm_add_pd(_mm_sub_pd(vy[i], o_y), opaque(_mm_mul_pd(s_y, pz)));
+            }
+            const __m128d e0 = _mm_sub_pd(opaque(_mm_mul_pd(x[1], y[2])), opaque(_mm_mul_pd(y[1], x[2])));
+            const __m128d e1 = _mm_sub_pd(opaque(_mm_mul_pd(x[2], y[0])), opaque(_mm_mul_pd(y[2], x[0])));
+            const __m128d e2 = _mm_sub_pd(opaque(_mm_mul_pd(x[0], y[1])), opaque(_mm_mul_pd(y[0], x[1])));
+            const __m128d zeros =
+                _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero));
+            const __m128d neg =
+                _mm_or_pd(_mm_or_pd(_mm_cmplt_pd(e0, zero), _mm_cmplt_pd(e1, zero)), _mm_cmplt_pd(e2, zero));
+            const __m128d pos =
+                _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
+            const int out = _mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos)));
+            keep |= static_cast<uint32_t>(~out & 3) << j;
+        }
+        return keep & lanes;
     }
 
     void load_limits() {
@@ -137,7 +187,12 @@ struct PacketClosestHit {
             if (((entry >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle)) {
                 const TriPrim& tri = g.tris[slot];
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
-                for (uint32_t l = lanes; l != 0; l &= l - 1) {
+                uint32_t test = lanes;
+                if (paired) {
+                    test = edge_candidates(v0, v1, v2, lanes);
+                    c.tri_tests += static_cast<uint64_t>(std::popcount(lanes & ~test));  // tested, missed
+                }
+                for (uint32_t l = test; l != 0; l &= l - 1) {
                     const int k = std::countr_zero(l);
                     if (test_triangle(*p.pre[k], v0, v1, v2, best[k].limit, c, t, b1, b2))
                         best[k].offer(t, tri.prim, slot, b1, b2);
