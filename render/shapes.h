@@ -124,6 +124,25 @@ struct TriangleEdges {
     }
 };
 
+// The rest of triangle_edges once q's translated vertices and edge functions are in place.
+[[gnu::always_inline]] inline bool finish_edges(const RayPre& r, TriangleEdges& q) {
+    // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
+    // All three first, then one test of their signs: the line misses when they differ, and
+    // which way that goes is what a branch cannot predict.
+    if ((q.e0 == 0) | (q.e1 == 0) | (q.e2 == 0)) [[unlikely]] {
+        if (q.e0 == 0) q.e0 = difference_of_products(q.x1, q.y2, q.y1, q.x2);
+        if (q.e1 == 0) q.e1 = difference_of_products(q.x2, q.y0, q.y2, q.x0);
+        if (q.e2 == 0) q.e2 = difference_of_products(q.x0, q.y1, q.y0, q.x1);
+    }
+    if (((q.e0 < 0) | (q.e1 < 0) | (q.e2 < 0)) & ((q.e0 > 0) | (q.e1 > 0) | (q.e2 > 0))) return false;
+    q.det = q.e0 + q.e1 + q.e2;
+    if (q.det == 0) return false;
+    q.z0 = r.sz * q.p0z;
+    q.z1 = r.sz * q.p1z;
+    q.z2 = r.sz * q.p2z;
+    return true;
+}
+
 [[gnu::always_inline]] inline bool triangle_edges(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
                                                   const Vec3f& v2, TriangleEdges& q) {
     const int kx = r.kx, ky = r.ky, kz = r.kz;
@@ -144,23 +163,21 @@ struct TriangleEdges {
     q.y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * q.p2z);
 
     // Edge functions; e(p, q) == -e(q, p) bit for bit, so a shared edge splits rays exactly.
-    // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
-    // All three first, then one test of their signs: the line misses when they differ, and
-    // which way that goes is what a branch cannot predict.
     q.e0 = opaque(q.x1 * q.y2) - opaque(q.y1 * q.x2);
     q.e1 = opaque(q.x2 * q.y0) - opaque(q.y2 * q.x0);
     q.e2 = opaque(q.x0 * q.y1) - opaque(q.y0 * q.x1);
-    if ((q.e0 == 0) | (q.e1 == 0) | (q.e2 == 0)) [[unlikely]] {
-        if (q.e0 == 0) q.e0 = difference_of_products(q.x1, q.y2, q.y1, q.x2);
-        if (q.e1 == 0) q.e1 = difference_of_products(q.x2, q.y0, q.y2, q.x0);
-        if (q.e2 == 0) q.e2 = difference_of_products(q.x0, q.y1, q.y0, q.x1);
-    }
-    if (((q.e0 < 0) | (q.e1 < 0) | (q.e2 < 0)) & ((q.e0 > 0) | (q.e1 > 0) | (q.e2 > 0))) return false;
-    q.det = q.e0 + q.e1 + q.e2;
-    if (q.det == 0) return false;
-    q.z0 = r.sz * q.p0z;
-    q.z1 = r.sz * q.p1z;
-    q.z2 = r.sz * q.p2z;
+    return finish_edges(r, q);
+}
+
+// The hit of a ray whose line meets the triangle (triangle_edges true): δt < t < limit.
+[[gnu::always_inline]] inline bool triangle_hit(const TriangleEdges& q, double limit, double& t_out,
+                                                double& b1_out, double& b2_out) {
+    const double t = q.t();
+    if (!(t > 0 && t < limit)) return false;
+    if (t <= q.t_error()) return false;
+    t_out = t;
+    b1_out = q.e1 / q.det;
+    b2_out = q.e2 / q.det;
     return true;
 }
 
@@ -170,14 +187,7 @@ struct TriangleEdges {
                                                       const Vec3f& v2, double limit, double& t_out,
                                                       double& b1_out, double& b2_out) {
     TriangleEdges q;
-    if (!triangle_edges(r, v0, v1, v2, q)) return false;
-    const double t = q.t();
-    if (!(t > 0 && t < limit)) return false;
-    if (t <= q.t_error()) return false;
-    t_out = t;
-    b1_out = q.e1 / q.det;
-    b2_out = q.e2 / q.det;
-    return true;
+    return triangle_edges(r, v0, v1, v2, q) && triangle_hit(q, limit, t_out, b1_out, b2_out);
 }
 
 // Ray/sphere in the frame where the ray is (o, d) and the sphere (c, radius). `o_err` bounds the
