@@ -28,7 +28,7 @@ template <int kFilter>
                                   Counters& c) {
     prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
-        const uint32_t e = g.order[k];
+        const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
         const uint32_t slot = e & kSlotMask;
         // Triangles straight into the running hit, without a HitRecord to fill and compare.
@@ -51,7 +51,7 @@ template <int kFilter>
                               Counters& c) {
     prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
-        const uint32_t e = g.order[k];
+        const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
         if (is_triangle(e)) [[likely]] {
             const TriPrim& tri = g.tris[e & kSlotMask];
