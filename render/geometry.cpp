@@ -28,10 +28,20 @@ template <int kFilter>
                                   Counters& c) {
     prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
-        const uint32_t e = g.order[k];
+        const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
+        const uint32_t slot = e & kSlotMask;
+        // Triangles straight into the running hit, without a HitRecord to fill and compare.
+        if (is_triangle(e)) [[likely]] {
+            const TriPrim& tri = g.tris[slot];
+            double t, b1, b2;
+            if (test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], best.limit, c, t,
+                              b1, b2))
+                best.offer(t, tri.prim, slot, b1, b2);
+            continue;
+        }
         HitRecord h;
-        if (test_entry(g, r, e, best.limit, c, h)) best.offer(h, e & kSlotMask);
+        if (test_entry(g, r, e, best.limit, c, h)) best.offer(h, slot);
     }
 }
 
@@ -41,8 +51,15 @@ template <int kFilter>
                               Counters& c) {
     prefetch_leaf_vertices(g, first, count);
     for (uint32_t k = first; k < first + count; ++k) {
-        const uint32_t e = g.order[k];
+        const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
+        if (is_triangle(e)) [[likely]] {
+            const TriPrim& tri = g.tris[e & kSlotMask];
+            double t, b1, b2;
+            if (test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], tmax, c, t, b1, b2))
+                return true;
+            continue;
+        }
         HitRecord h;
         if (test_entry(g, r, e, tmax, c, h)) return true;
     }

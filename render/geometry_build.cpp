@@ -518,6 +518,10 @@ void Builder::finish_bvh() {
     g.tris = std::move(tris);
     g.spheres = std::move(spheres);
     g.boxes = std::move(boxes);
+    // Triangles alone are stored in the order of their entries: entry k is tris[k].
+    g.tris_in_order =
+        sum[static_cast<size_t>(PrimKind::Triangle)] == n &&
+        std::none_of(g.order.begin(), g.order.end(), [](uint32_t e) { return (e & kTransmissiveBit) != 0; });
 }
 
 }  // namespace

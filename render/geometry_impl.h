@@ -77,6 +77,9 @@ struct Geometry::Impl {
     std::vector<uint8_t> inherits;  // a prototype's: per order entry, 1 when its material is inherited
     bool use_bvh = true;
     bool has_transmissive = false;
+    // Every entry of order is an opaque triangle and order[k] names tris[k]: a BVH over
+    // triangles alone, whose leaves then read tris without order (geometry_build.cpp).
+    bool tris_in_order = false;
     size_t primitive_count = 0;
     int bvh_depth = 0;
 

@@ -107,10 +107,80 @@ struct PacketClosestHit {
     float limit_max = -1;
     uint64_t leaf_boxes = 0;
 
+    // Triangle edge functions two rays at a time (double pairs) when every ray of the packet
+    // has the same axes (RayPre::kx, ky, kz): per ray the operations of triangle_edges, so the
+    // rays they reject are those it would reject, and the others take the full test.
+    bool paired = true;
+    int kx = 0, ky = 1, kz = 2;
+    alignas(16) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays];
+
     PacketClosestHit(const Impl& g_, const Packet<Q>& p_, Best* best_, uint32_t live, Counters& c_)
         : g(g_), p(p_), best(best_), c(c_) {
         for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
         load_limits();
+        kx = p.pre[0]->kx, ky = p.pre[0]->ky, kz = p.pre[0]->kz;
+        for (int k = 0; k < kRays; ++k) {
+            const RayPre& r = *p.pre[k];
+            paired = paired && r.kx == kx && r.ky == ky && r.kz == kz;
+            ox[k] = r.ox, oy[k] = r.oy, oz[k] = r.oz, sx[k] = r.sx, sy[k] = r.sy;
+        }
+    }
+
+    // The triangle (vertices v0, v1, v2; canonical id prim, stored at slot) against the rays
+    // of `lanes`, two at a time up to their edge functions, then ray by ray as test_triangle
+    // goes on (finish_edges, triangle_hit) for those whose edge functions do not rule it out.
+    void test_triangle_paired(const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t lanes,
+                              uint32_t prim, uint32_t slot) {
+        const float* a[3] = {glm::value_ptr(v0), glm::value_ptr(v1), glm::value_ptr(v2)};
+        __m128d vx[3], vy[3], vz[3];
+        for (int i = 0; i < 3; ++i) {
+            vx[i] = _mm_set1_pd(static_cast<double>(a[i][kx]));
+            vy[i] = _mm_set1_pd(static_cast<double>(a[i][ky]));
+            vz[i] = _mm_set1_pd(static_cast<double>(a[i][kz]));
+        }
+        c.tri_tests += static_cast<uint64_t>(std::popcount(lanes));
+        const __m128d zero = _mm_setzero_pd();
+        for (int j = 0; j < kRays; j += 2) {
+            const uint32_t pair = lanes >> j & 3u;
+            if (pair == 0) continue;
+            const __m128d o_x = _mm_load_pd(ox + j), o_y = _mm_load_pd(oy + j), o_z = _mm_load_pd(oz + j);
+            const __m128d s_x = _mm_load_pd(sx + j), s_y = _mm_load_pd(sy + j);
+            __m128d pz[3], x[3], y[3];
+            for (int i = 0; i < 3; ++i) {
+                pz[i] = _mm_sub_pd(vz[i], o_z);
+                x[i] = _mm_add_pd(_mm_sub_pd(vx[i], o_x), opaque(_mm_mul_pd(s_x, pz[i])));
+                y[i] = _mm_add_pd(_mm_sub_pd(vy[i], o_y), opaque(_mm_mul_pd(s_y, pz[i])));
+            }
+            const __m128d e0 = _mm_sub_pd(opaque(_mm_mul_pd(x[1], y[2])), opaque(_mm_mul_pd(y[1], x[2])));
+            const __m128d e1 = _mm_sub_pd(opaque(_mm_mul_pd(x[2], y[0])), opaque(_mm_mul_pd(y[2], x[0])));
+            const __m128d e2 = _mm_sub_pd(opaque(_mm_mul_pd(x[0], y[1])), opaque(_mm_mul_pd(y[0], x[1])));
+            // Ruled out: no edge function zero (finish_edges would recompute it) and two signs.
+            const __m128d zeros =
+                _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero));
+            const __m128d neg =
+                _mm_or_pd(_mm_or_pd(_mm_cmplt_pd(e0, zero), _mm_cmplt_pd(e1, zero)), _mm_cmplt_pd(e2, zero));
+            const __m128d pos =
+                _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
+            const uint32_t out =
+                static_cast<uint32_t>(_mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos))));
+            for (uint32_t l = pair & ~out; l != 0; l &= l - 1) {
+                const int lane = std::countr_zero(l);
+                const auto at = [lane](__m128d v) {
+                    return _mm_cvtsd_f64(lane == 0 ? v : _mm_unpackhi_pd(v, v));
+                };
+                TriangleEdges q;
+                q.p0z = at(pz[0]), q.p1z = at(pz[1]), q.p2z = at(pz[2]);
+                q.x0 = at(x[0]), q.y0 = at(y[0]), q.x1 = at(x[1]), q.y1 = at(y[1]), q.x2 = at(x[2]),
+                q.y2 = at(y[2]);
+                q.e0 = at(e0), q.e1 = at(e1), q.e2 = at(e2);
+                const int k = j + lane;
+                double t, b1, b2;
+                if (finish_edges(*p.pre[k], q) && triangle_hit(q, best[k].limit, t, b1, b2)) {
+                    ++c.tri_hits;
+                    best[k].offer(t, prim, slot, b1, b2);
+                }
+            }
+        }
     }
 
     void load_limits() {
@@ -137,12 +207,16 @@ struct PacketClosestHit {
         // fetched once. Each ray still meets the primitives in order (not that it matters: the
         // closest hit with ties to the lowest id does not depend on the order).
         for (uint32_t j = e.first; j < e.first + e.count; ++j) {
-            const uint32_t entry = g.order[j];
+            const uint32_t entry = entry_at(g, j);
             const uint32_t slot = entry & kSlotMask;
             double t, b1, b2;
             if (((entry >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle)) {
                 const TriPrim& tri = g.tris[slot];
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
+                if (paired) {
+                    test_triangle_paired(v0, v1, v2, lanes, tri.prim, slot);
+                    continue;
+                }
                 for (uint32_t l = lanes; l != 0; l &= l - 1) {
                     const int k = std::countr_zero(l);
                     if (test_triangle(*p.pre[k], v0, v1, v2, best[k].limit, c, t, b1, b2))

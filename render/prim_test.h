@@ -86,6 +86,17 @@ inline Vec3 sphere_origin_error(const Transform& x, const SpherePrim& s, const V
     return x.inv_point_error(o) + x.resid_lin * m + x.resid_t;
 }
 
+// True for an entry of Impl::order that is a triangle.
+inline bool is_triangle(uint32_t e) {
+    return ((e >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle);
+}
+
+// Entry k of Impl::order. With tris_in_order that is tris[k], an opaque triangle (encoded as
+// k), and the leaves' triangles are read without a load of order.
+[[gnu::always_inline]] inline uint32_t entry_at(const Impl& g, uint32_t k) {
+    return g.tris_in_order ? k : g.order[k];
+}
+
 // A triangle whose vertices are at hand, counted.
 [[gnu::always_inline]] inline bool test_triangle(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
                                                  const Vec3f& v2, double limit, Counters& c, double& t,
@@ -182,7 +193,7 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
 [[gnu::always_inline]] inline void prefetch_leaf_vertices(const Impl& g, uint32_t first, uint32_t count) {
     if (count < 2) return;
     for (uint32_t k = first; k < first + count; ++k) {
-        const uint32_t e = g.order[k];
+        const uint32_t e = entry_at(g, k);
         if (((e >> kKindShift) & 3u) != uint32_t(PrimKind::Triangle)) continue;
         const TriPrim& tri = g.tris[e & kSlotMask];
         for (int j = 0; j < 3; ++j) __builtin_prefetch(g.verts.data() + tri.v[j]);

@@ -1,42 +1,11 @@
-// Per-ray precomputation and the UV maps of the shapes (sphere map, unfolded-cube box map, plane
-// axes), as wsd-language.md §4 defines them. The intersection tests themselves are inline in
-// shapes.h so that traversal loops can inline them.
+// The UV maps of the shapes (sphere map, unfolded-cube box map, plane axes), as
+// wsd-language.md §4 defines them. The per-ray precomputation and the intersection tests are
+// inline in shapes.h so that traversal loops can inline them.
 #include "render/shapes.h"
 
 #include <cmath>
-#include <utility>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace wsd::render {
-
-void RayPre::init(const Ray& r, bool with_box) {
-    o = r.o;
-    d = r.d;
-    Vec3 ad = abs3(d);
-    kz = ad.x >= ad.y ? (ad.x >= ad.z ? 0 : 2) : (ad.y >= ad.z ? 1 : 2);
-    kx = kz + 1 == 3 ? 0 : kz + 1;
-    ky = kx + 1 == 3 ? 0 : kx + 1;
-    if (d[kz] < 0) std::swap(kx, ky);  // keep the winding, so e > 0 means the same side
-    ox = o[kx], oy = o[ky], oz = o[kz];
-    a = glm::dot(d, d);
-#if defined(__SSE2__)
-    // The same IEEE divisions, two at a time.
-    const __m128d q = _mm_div_pd(_mm_set_pd(-d[ky], -d[kx]), _mm_set1_pd(d[kz]));
-    const __m128d rcp = _mm_div_pd(_mm_set1_pd(1.0), _mm_set_pd(a, d[kz]));
-    sx = _mm_cvtsd_f64(q);
-    sy = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
-    sz = _mm_cvtsd_f64(rcp);
-    inv_a = _mm_cvtsd_f64(_mm_unpackhi_pd(rcp, rcp));
-#else
-    sx = -d[kx] / d[kz];
-    sy = -d[ky] / d[kz];
-    sz = 1.0 / d[kz];
-    inv_a = 1.0 / a;
-#endif
-    if (with_box) box.init(o, d);
-}
 
 Vec2 box_uv(const Vec3& p, const Vec3& lo, const Vec3& hi, int face) {
     // Each face as seen from outside, upright (screen right = cross(up, forward) as for the

@@ -6,6 +6,10 @@
 
 #include <cstdint>
 #include <glm/gtc/type_ptr.hpp>
+#include <utility>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "render/aabb.h"
 #include "render/geometry.h"
@@ -28,6 +32,37 @@ struct RayPre {
     RayPre() = default;
     void init(const Ray& r, bool with_box);
 };
+
+inline void RayPre::init(const Ray& r, bool with_box) {
+    o = r.o;
+    d = r.d;
+    // Components through a pointer: glm's operator[] is a switch on the index.
+    const double* op = glm::value_ptr(o);
+    const double* dp = glm::value_ptr(d);
+    const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+    kz = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    kx = kz == 2 ? 0 : kz + 1;
+    ky = kx == 2 ? 0 : kx + 1;
+    if (dp[kz] < 0) std::swap(kx, ky);  // keep the winding, so e > 0 means the same side
+    ox = op[kx], oy = op[ky], oz = op[kz];
+    a = glm::dot(d, d);
+    const double dx = dp[kx], dy = dp[ky], dz = dp[kz];
+#if defined(__SSE2__)
+    // The same IEEE divisions, two at a time.
+    const __m128d q = _mm_div_pd(_mm_set_pd(-dy, -dx), _mm_set1_pd(dz));
+    const __m128d rcp = _mm_div_pd(_mm_set1_pd(1.0), _mm_set_pd(a, dz));
+    sx = _mm_cvtsd_f64(q);
+    sy = _mm_cvtsd_f64(_mm_unpackhi_pd(q, q));
+    sz = _mm_cvtsd_f64(rcp);
+    inv_a = _mm_cvtsd_f64(_mm_unpackhi_pd(rcp, rcp));
+#else
+    sx = -dx / dz;
+    sy = -dy / dz;
+    sz = 1.0 / dz;
+    inv_a = 1.0 / a;
+#endif
+    if (with_box) box.init(o, d);
+}
 
 // Triangle: indices into the world vertex pool and the canonical primitive id.
 struct TriPrim {
@@ -89,6 +124,25 @@ struct TriangleEdges {
     }
 };
 
+// The rest of triangle_edges once q's translated vertices and edge functions are in place.
+[[gnu::always_inline]] inline bool finish_edges(const RayPre& r, TriangleEdges& q) {
+    // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
+    // All three first, then one test of their signs: the line misses when they differ, and
+    // which way that goes is what a branch cannot predict.
+    if ((q.e0 == 0) | (q.e1 == 0) | (q.e2 == 0)) [[unlikely]] {
+        if (q.e0 == 0) q.e0 = difference_of_products(q.x1, q.y2, q.y1, q.x2);
+        if (q.e1 == 0) q.e1 = difference_of_products(q.x2, q.y0, q.y2, q.x0);
+        if (q.e2 == 0) q.e2 = difference_of_products(q.x0, q.y1, q.y0, q.x1);
+    }
+    if (((q.e0 < 0) | (q.e1 < 0) | (q.e2 < 0)) & ((q.e0 > 0) | (q.e1 > 0) | (q.e2 > 0))) return false;
+    q.det = q.e0 + q.e1 + q.e2;
+    if (q.det == 0) return false;
+    q.z0 = r.sz * q.p0z;
+    q.z1 = r.sz * q.p1z;
+    q.z2 = r.sz * q.p2z;
+    return true;
+}
+
 [[gnu::always_inline]] inline bool triangle_edges(const RayPre& r, const Vec3f& v0, const Vec3f& v1,
                                                   const Vec3f& v2, TriangleEdges& q) {
     const int kx = r.kx, ky = r.ky, kz = r.kz;
@@ -109,23 +163,21 @@ struct TriangleEdges {
     q.y2 = (static_cast<double>(a2[ky]) - r.oy) + opaque(r.sy * q.p2z);
 
     // Edge functions; e(p, q) == -e(q, p) bit for bit, so a shared edge splits rays exactly.
-    // An exactly zero value may hide a sign: it is recomputed to about 1 ULP (exact sign).
     q.e0 = opaque(q.x1 * q.y2) - opaque(q.y1 * q.x2);
     q.e1 = opaque(q.x2 * q.y0) - opaque(q.y2 * q.x0);
-    if (q.e0 == 0) [[unlikely]]
-        q.e0 = difference_of_products(q.x1, q.y2, q.y1, q.x2);
-    if (q.e1 == 0) [[unlikely]]
-        q.e1 = difference_of_products(q.x2, q.y0, q.y2, q.x0);
-    if ((q.e0 < 0 && q.e1 > 0) || (q.e0 > 0 && q.e1 < 0)) return false;
     q.e2 = opaque(q.x0 * q.y1) - opaque(q.y0 * q.x1);
-    if (q.e2 == 0) [[unlikely]]
-        q.e2 = difference_of_products(q.x0, q.y1, q.y0, q.x1);
-    if ((q.e0 < 0 || q.e1 < 0 || q.e2 < 0) && (q.e0 > 0 || q.e1 > 0 || q.e2 > 0)) return false;
-    q.det = q.e0 + q.e1 + q.e2;
-    if (q.det == 0) return false;
-    q.z0 = r.sz * q.p0z;
-    q.z1 = r.sz * q.p1z;
-    q.z2 = r.sz * q.p2z;
+    return finish_edges(r, q);
+}
+
+// The hit of a ray whose line meets the triangle (triangle_edges true): δt < t < limit.
+[[gnu::always_inline]] inline bool triangle_hit(const TriangleEdges& q, double limit, double& t_out,
+                                                double& b1_out, double& b2_out) {
+    const double t = q.t();
+    if (!(t > 0 && t < limit)) return false;
+    if (t <= q.t_error()) return false;
+    t_out = t;
+    b1_out = q.e1 / q.det;
+    b2_out = q.e2 / q.det;
     return true;
 }
 
@@ -135,14 +187,7 @@ struct TriangleEdges {
                                                       const Vec3f& v2, double limit, double& t_out,
                                                       double& b1_out, double& b2_out) {
     TriangleEdges q;
-    if (!triangle_edges(r, v0, v1, v2, q)) return false;
-    const double t = q.t();
-    if (!(t > 0 && t < limit)) return false;
-    if (t <= q.t_error()) return false;
-    t_out = t;
-    b1_out = q.e1 / q.det;
-    b2_out = q.e2 / q.det;
-    return true;
+    return triangle_edges(r, v0, v1, v2, q) && triangle_hit(q, limit, t_out, b1_out, b2_out);
 }
 
 // Ray/sphere in the frame where the ray is (o, d) and the sphere (c, radius). `o_err` bounds the
