@@ -437,7 +437,7 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
     if (right.end - right.begin >= kSubtreeMin && claim_thread(s)) {
         // The right subtree is built on another thread into its own array (root at index 0)
         // and spliced in afterwards. Without a thread it goes straight into ours: the binary
-        // layout then differs, but not the tree, so to_bvh4 (depth first) emits the same nodes.
+        // layout then differs, but not the tree, so to_bvh_wide (depth first) emits the same nodes.
         Task sub;
         reserve_huge(sub.nodes, 2 * size_t{right.end - right.begin});  // < 2n nodes
         sub.nodes.push_back(BvhNode{});
@@ -500,7 +500,7 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     Shared s{refs, options, {threads - 1}};
 
     // Enough for any tree (fewer than 2n nodes), so that splicing never reallocates; untouched
-    // capacity costs no memory. The nodes are a temporary for to_bvh4, hence no shrink_to_fit.
+    // capacity costs no memory. The nodes are a temporary for to_bvh_wide, hence no shrink_to_fit.
     Task task;
     reserve_huge(task.nodes, 2 * size_t{n});
     task.nodes.push_back(BvhNode{});
