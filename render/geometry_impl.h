@@ -73,8 +73,8 @@ struct Geometry::Impl {
     std::vector<InstancePrim> instances;                 // instances of prototypes
     std::vector<std::unique_ptr<Prototype>> prototypes;  // SceneSpec::prototypes, built when used
     std::vector<BvhWideNode> nodes;  // the BVH in its wide traversal form; empty without BVH
-    std::vector<uint32_t> order;    // encoded entries; leaf ranges (BVH) or canonical order
-    std::vector<uint8_t> inherits;  // a prototype's: per order entry, 1 when its material is inherited
+    std::vector<uint32_t> order;     // encoded entries; leaf ranges (BVH) or canonical order
+    std::vector<uint8_t> inherits;   // a prototype's: per order entry, 1 when its material is inherited
     bool use_bvh = true;
     bool has_transmissive = false;
     // Every entry of order is an opaque triangle and order[k] names tris[k]: a BVH over

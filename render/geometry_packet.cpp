@@ -3,11 +3,12 @@
 // At each node one SIMD test bounds, by interval arithmetic over the rays, which of the
 // children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit's
 // arithmetic, lane by lane) picks the rays whose primitives are tested, with the single-ray
-// triangle test's operations (two rays at a time when the rays share their axes). Each ray gets exactly the hit intersect() returns: it enters every box intersect()
-// would enter for it (the bounds are conservative, its own test is the same, its limit never
-// below its own), and the closest hit with ties to the lowest id does not depend on the order
-// primitives are tested in. Rays whose directions differ in sign on some axis, or that the
-// single-ray path rejects or rescales, are traced one by one instead.
+// triangle test's operations (two rays at a time when the rays share their axes). Each ray gets
+// exactly the hit intersect() returns: it enters every box intersect() would enter for it (the
+// bounds are conservative, its own test is the same, its limit never below its own), and the
+// closest hit with ties to the lowest id does not depend on the order primitives are tested in.
+// Rays whose directions differ in sign on some axis, or that the single-ray path rejects or
+// rescales, are traced one by one instead.
 #include <algorithm>
 #include <bit>
 
