@@ -368,6 +368,7 @@ embree_table() {
   para "" "| scene | rays | count | wsd M/CPU-s | Embree M/CPU-s | wsd / Embree | rays whose hits differ: why |" \
        "|---|---|---:|---:|---:|---:|---|"
   awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s | %d: %s |\n", $2, $3, $7, $4, $5, $6, $8, $9 }' "$f" >>"$page"
+  embree_arch_table
   local tol; tol=$(awk '/^Embree/ { for (i = 1; i < NF; i++) if ($i == "tolerance") { v = $(i + 1); sub(/,$/, "", v); print v; exit } }' "$f")
   para "" "A hit agrees when it is on the same primitive (any of a box's triangles counts as the box) at" \
        "distances apart by at most $tol of the scale float arithmetic works at along the ray (the" \
@@ -380,6 +381,26 @@ embree_table() {
        "these. \"Nearer hit\" says whose hit (or occluder) is the nearer or the only one: where it is" \
        "Embree's at the origin, Embree hit the surface the ray leaves; where it is wsd's at an edge," \
        "Embree's ray passed between two triangles that share that edge."
+}
+
+# The million-triangle mesh again, with wsd built for AVX2 (-DWSD_ARCH=x86-64-v3: a node's eight
+# boxes in one 8-lane test) where the machine has it.
+embree_arch_table() {
+  local arch=x86-64-v3 dir="$build-x86-64-v3"
+  if ! grep -qw avx2 /proc/cpuinfo; then
+    para "" "Not measured with \`-DWSD_ARCH=$arch\`: this machine has no AVX2."
+    return 0
+  fi
+  log "building bench_embree with -DWSD_ARCH=$arch in $dir"
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DWSD_ARCH=$arch -DWSD_TESTS=OFF >/dev/null
+  cmake --build "$dir" -j2 --target bench_embree >/dev/null
+  local args=(); ((quick)) && args=(--quick)
+  log "$dir/bench_embree ${args[*]} mesh1m"
+  "$dir/bench_embree" "${args[@]}" mesh1m >"$tmp/embree-arch.txt"
+  para "" "The same mesh1m rays with wsd built by \`cmake -DWSD_ARCH=$arch\` (AVX2: a node's eight" \
+       "boxes in one 8-lane test; contraction stays off, so the hits are the same), run after the table above:" \
+       "" "| scene | rays | count | wsd M/CPU-s | Embree M/CPU-s | wsd / Embree |" "|---|---|---:|---:|---:|---:|"
+  awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s |\n", $2, $3, $7, $4, $5, $6 }' "$tmp/embree-arch.txt" >>"$page"
 }
 
 # ---------------------------------------------------------------- CSG
