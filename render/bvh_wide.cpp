@@ -101,10 +101,12 @@ void set_lane(BvhWideNode& node, int i, const BvhNode& child) {
     node.set_child(i, child.first, child.count);
 }
 
-// Writes the wide node for inner node `n` at out[at] and, depth first, the nodes below it from
-// out[at + 1] on; returns the index after the last.
-uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
-                   uint32_t at) {
+// Writes the wide node for inner node `n` at out[at]; its inner children's subtrees go from
+// out[at + 1] on, in lane order, each placed by place(kid, index) which returns the index after
+// that subtree's last node. Returns the index after the last.
+template <class Place>
+uint32_t write_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+                    uint32_t at, Place&& place) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
     BvhWideNode node = empty_wide_node();
@@ -115,11 +117,19 @@ uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t 
             node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
         } else {
             node.set_child(i, next, 0);
-            next = emit_wide(nodes, r, kids[i], out, next);
+            next = place(kids[i], next);
         }
     }
     out[at] = node;
     return next;
+}
+
+// Writes the wide node for inner node `n` at out[at] and, depth first, the nodes below it;
+// returns the index after the last.
+uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+                   uint32_t at) {
+    return write_wide(nodes, r, n, out, at,
+                      [&](uint32_t kid, uint32_t next) { return emit_wide(nodes, r, kid, out, next); });
 }
 
 // A subtree that emit_wide writes on its own: binary node n's wide nodes go to out[at, ...).
@@ -128,28 +138,16 @@ struct WideJob {
 };
 
 // Writes the wide node for inner node `n` at out[at]; its inner children's subtrees, placed where
-// a depth-first emit_wide puts them, are written here down to `levels` more levels and left to
-// `jobs` below that.
+// emit_wide puts them, are written here down to `levels` more levels and left to `jobs` below.
 void place_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out, uint32_t at,
                 int levels, std::vector<WideJob>& jobs) {
-    uint32_t kids[kBvhWidth];
-    const int count = wide_children(nodes, r, n, kids);
-    BvhWideNode node = empty_wide_node();
-    uint32_t next = at + 1;
-    for (int i = 0; i < count; ++i) {
-        set_lane(node, i, nodes[kids[i]]);
-        if (r.leaf(nodes, kids[i])) {
-            node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
-            continue;
-        }
-        node.set_child(i, next, 0);
+    write_wide(nodes, r, n, out, at, [&](uint32_t kid, uint32_t next) {
         if (levels > 0)
-            place_wide(nodes, r, kids[i], out, next, levels - 1, jobs);
+            place_wide(nodes, r, kid, out, next, levels - 1, jobs);
         else
-            jobs.push_back({kids[i], next});
-        next += static_cast<uint32_t>(count_wide(nodes, r, kids[i]));
-    }
-    out[at] = node;
+            jobs.push_back({kid, next});
+        return next + static_cast<uint32_t>(count_wide(nodes, r, kid));
+    });
 }
 
 }  // namespace
