@@ -211,7 +211,7 @@ struct PacketClosestHit {
             const uint32_t entry = entry_at(g, j);
             const uint32_t slot = entry & kSlotMask;
             double t, b1, b2;
-            if (((entry >> kKindShift) & 3u) == uint32_t(PrimKind::Triangle)) {
+            if (is_triangle(entry)) {
                 const TriPrim& tri = g.tris[slot];
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
                 if (paired) {

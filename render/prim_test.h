@@ -194,7 +194,7 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
     if (count < 2) return;
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = entry_at(g, k);
-        if (((e >> kKindShift) & 3u) != uint32_t(PrimKind::Triangle)) continue;
+        if (!is_triangle(e)) continue;
         const TriPrim& tri = g.tris[e & kSlotMask];
         for (int j = 0; j < 3; ++j) __builtin_prefetch(g.verts.data() + tri.v[j]);
     }
