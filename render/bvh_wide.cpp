@@ -42,7 +42,7 @@ struct Ranges {
         size_[n] = size | (leaf ? kLeafBit : 0);
         return size;
     }
-    bool leaf(const std::vector<BvhNode>&, uint32_t n) const { return (size_[n] & kLeafBit) != 0; }
+    bool leaf(uint32_t n) const { return (size_[n] & kLeafBit) != 0; }
     uint32_t size(uint32_t n) const { return size_[n] & ~kLeafBit; }
     // The start of the order range of n's subtree: its leftmost leaf's.
     static uint32_t first(const std::vector<BvhNode>& nodes, uint32_t n) {
@@ -60,8 +60,7 @@ int wide_children(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n
     while (count < kBvhWidth) {
         int open = -1;
         for (int i = 0; i < count; ++i)
-            if (!r.leaf(nodes, kids[i]) &&
-                (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
+            if (!r.leaf(kids[i]) && (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
                 open = i;
         if (open < 0) break;
         uint32_t inner = kids[open];
@@ -77,7 +76,7 @@ size_t count_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n
     const int count = wide_children(nodes, r, n, kids);
     size_t total = 1;
     for (int i = 0; i < count; ++i)
-        if (!r.leaf(nodes, kids[i])) total += count_wide(nodes, r, kids[i]);
+        if (!r.leaf(kids[i])) total += count_wide(nodes, r, kids[i]);
     return total;
 }
 
@@ -113,7 +112,7 @@ uint32_t write_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t
     uint32_t next = at + 1;
     for (int i = 0; i < count; ++i) {
         set_lane(node, i, nodes[kids[i]]);
-        if (r.leaf(nodes, kids[i])) {
+        if (r.leaf(kids[i])) {
             node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
         } else {
             node.set_child(i, next, 0);
