@@ -136,16 +136,34 @@ struct WideJob {
     uint32_t n, at;
 };
 
+// The subtrees below the wide node for inner node `n` and `levels` more levels of its inner
+// children, in the order place_wide meets them, into `roots`. Returns the number of wide nodes in
+// those levels.
+uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, int levels,
+                        std::vector<uint32_t>& roots) {
+    uint32_t kids[kBvhWidth];
+    const int count = wide_children(nodes, r, n, kids);
+    uint32_t top = 1;
+    for (int i = 0; i < count; ++i) {
+        if (r.leaf(kids[i])) continue;
+        if (levels > 0)
+            top += subtrees_below(nodes, r, kids[i], levels - 1, roots);
+        else
+            roots.push_back(kids[i]);
+    }
+    return top;
+}
+
 // Writes the wide node for inner node `n` at out[at]; its inner children's subtrees, placed where
 // emit_wide puts them, are written here down to `levels` more levels and left to `jobs` below.
-void place_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out, uint32_t at,
-                int levels, std::vector<WideJob>& jobs) {
-    write_wide(nodes, r, n, out, at, [&](uint32_t kid, uint32_t next) {
-        if (levels > 0)
-            place_wide(nodes, r, kid, out, next, levels - 1, jobs);
-        else
-            jobs.push_back({kid, next});
-        return next + static_cast<uint32_t>(count_wide(nodes, r, kid));
+// The subtree of the k-th job holds sizes[k] wide nodes. Returns the index after the last.
+uint32_t place_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+                    uint32_t at, int levels, const std::vector<uint32_t>& sizes, std::vector<WideJob>& jobs) {
+    return write_wide(nodes, r, n, out, at, [&](uint32_t kid, uint32_t next) {
+        if (levels > 0) return place_wide(nodes, r, kid, out, next, levels - 1, sizes, jobs);
+        const uint32_t size = sizes[jobs.size()];
+        jobs.push_back({kid, next});
+        return next + size;
     });
 }
 
@@ -163,14 +181,20 @@ std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const Wi
     }
     // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
     // no huge pages (see prefer_huge_pages). The top two levels are written here; the subtrees
-    // below them, each to its own depth-first place, in parallel: the same nodes as one
-    // depth-first walk, whatever the thread count.
+    // below them are counted, then written each to its own depth-first place, in parallel: the
+    // same nodes as one depth-first walk, whatever the thread count.
     const Ranges r(nodes, mergeable);
-    out.resize(count_wide(nodes, r, 0));
-    std::vector<WideJob> jobs;
-    place_wide(nodes, r, 0, out.data(), 0, 1, jobs);
+    std::vector<uint32_t> roots;
+    size_t total = subtrees_below(nodes, r, 0, 1, roots);
+    std::vector<uint32_t> sizes(roots.size());
     ParallelOptions options;
     options.threads = threads;
+    parallel_for(roots.size(), options,
+                 [&](size_t j, int) { sizes[j] = static_cast<uint32_t>(count_wide(nodes, r, roots[j])); });
+    for (uint32_t size : sizes) total += size;
+    out.resize(total);
+    std::vector<WideJob> jobs;
+    place_wide(nodes, r, 0, out.data(), 0, 1, sizes, jobs);
     parallel_for(jobs.size(), options,
                  [&](size_t j, int) { emit_wide(nodes, r, jobs[j].n, out.data(), jobs[j].at); });
     return out;
