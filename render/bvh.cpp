@@ -14,9 +14,6 @@
 #include <bit>
 #include <limits>
 #include <thread>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace wsd::render {
 
@@ -439,7 +436,7 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
         // and spliced in afterwards. Without a thread it goes straight into ours: the binary
         // layout then differs, but not the tree, so to_bvh_wide (depth first) emits the same nodes.
         Task sub;
-        reserve_huge(sub.nodes, 2 * size_t{right.end - right.begin});  // < 2n nodes
+        sub.nodes.reserve(2 * size_t{right.end - right.begin});  // < 2n nodes
         sub.nodes.push_back(BvhNode{});
         std::thread worker([&s, &sub, right, depth] {
             build_node(s, sub, 0, right, depth + 1);
@@ -473,7 +470,7 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     // The references, in fixed chunks on every thread, with each chunk's bounds and centroid
     // bounds; those are merged in chunk order.
     std::vector<Ref> refs;
-    reserve_huge(refs, n);
+    refs.reserve(n);
     refs.resize(n);
     const size_t chunks = (size_t{n} + kBvhChunk - 1) / kBvhChunk;
     std::vector<Range> chunk_bounds(chunks);
@@ -502,29 +499,17 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     // Enough for any tree (fewer than 2n nodes), so that splicing never reallocates; untouched
     // capacity costs no memory. The nodes are a temporary for to_bvh_wide, hence no shrink_to_fit.
     Task task;
-    reserve_huge(task.nodes, 2 * size_t{n});
+    task.nodes.reserve(2 * size_t{n});
     task.nodes.push_back(BvhNode{});
     build_node(s, task, 0, root, 0);
 
     bvh.nodes = std::move(task.nodes);
     bvh.depth = task.depth;
-    bvh.order.resize(n);  // becomes Geometry's order: see prefer_huge_pages
+    bvh.order.resize(n);
     parallel_chunks(n, kBvhChunk, threads, [&](size_t, size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
     });
     return bvh;
-}
-
-void prefer_huge_pages(const void* data, size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr uintptr_t kHuge = uintptr_t{1} << 21;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHuge - 1);
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-    (void)data;
-    (void)bytes;
-#endif
 }
 
 }  // namespace wsd::render

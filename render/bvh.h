@@ -56,17 +56,4 @@ using WideLeafFn = std::function<bool(uint32_t first, uint32_t count)>;
 std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable = {},
                                      int threads = 1);
 
-// Asks the kernel to back the 2 MiB-aligned part of a large, not yet touched buffer (a vector
-// just reserved) with huge pages. On VMs a 4 KiB page fault is expensive (measured 2.9 ms per MiB
-// on the CI-like machine, serialised across threads): it dominated the build of a million-triangle
-// mesh. For the build's temporaries only: with the traversal's own arrays (nodes, order,
-// triangles, vertices) on huge pages, rays on that mesh were measured 6-14 % slower. A hint only:
-// a no-op off Linux, for small buffers, or when the kernel declines.
-void prefer_huge_pages(const void* data, size_t bytes);
-template <class T>
-void reserve_huge(std::vector<T>& v, size_t n) {
-    v.reserve(n);
-    prefer_huge_pages(v.data(), v.capacity() * sizeof(T));
-}
-
 }  // namespace wsd::render

@@ -179,10 +179,9 @@ std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const Wi
         out.push_back(root);
         return out;
     }
-    // Counted first: the exact size, without a shrinking copy. Traversal reads these nodes, so
-    // no huge pages (see prefer_huge_pages). The top two levels are written here; the subtrees
-    // below them are counted, then written each to its own depth-first place, in parallel: the
-    // same nodes as one depth-first walk, whatever the thread count.
+    // Counted first: the exact size, without a shrinking copy. The top two levels are written
+    // here; the subtrees below them are counted, then written each to its own depth-first place,
+    // in parallel: the same nodes as one depth-first walk, whatever the thread count.
     const Ranges r(nodes, mergeable);
     std::vector<uint32_t> roots;
     size_t total = subtrees_below(nodes, r, 0, 1, roots);
