@@ -361,7 +361,10 @@ embree_table() {
        "direction about the surface normal (incoherent). Both trace the same float values; secondary" \
        "origins are wsd's error-bounded offsets. Rates are rays per CPU-second, the median of 5 passes" \
        "(3 on the largest mesh) taken in turn." \
-       "" "Builds of the meshes (wall times on a busy machine include waiting for a core):" \
+       "" "Builds of the meshes. Wall times on a busy machine include waiting for a core, and every build" \
+       "includes faulting in its memory: on a VM, about 0.4 ms per MiB for memory freed before and about" \
+       "10 ms per MiB for memory the host has not backed yet, so a build that is the first to touch" \
+       "memory is slower:" \
        "" "| scene | triangles | wsd build, 2 threads: wall (CPU) | wsd bytes/triangle (+ mesh data) | Embree build, 2 threads: wall |" \
        "|---|---:|---:|---:|---:|"
   awk -F'|' '$1 == "build" && $2 != "cornell" { printf "| %s | %d | %.2f s (%.2f s) | %s (+ %s) | %.2f s |\n", $2, $3, $4, $5, $6, $7, $8 }' "$f" >>"$page"
