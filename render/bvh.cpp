@@ -469,9 +469,7 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     const int threads = thread_count(options.threads);
     // The references, in fixed chunks on every thread, with each chunk's bounds and centroid
     // bounds; those are merged in chunk order.
-    std::vector<Ref> refs;
-    refs.reserve(n);
-    refs.resize(n);
+    std::vector<Ref> refs(n);
     const size_t chunks = (size_t{n} + kBvhChunk - 1) / kBvhChunk;
     std::vector<Range> chunk_bounds(chunks);
     std::vector<std::vector<Bounds3f>> scratch(static_cast<size_t>(threads));
