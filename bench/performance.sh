@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Measures wsd and writes docs/performance.md from what it measured: the machine and the date at
-# the top, then one table per benchmark, each with the command that regenerates it. It builds
-# nothing: it runs the programs of an existing build directory (default build/, made by
-# ./setup.sh). The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
+# the top, then one table per benchmark, each with the command that regenerates it. It runs the
+# programs of an existing build directory (default build/, made by ./setup.sh) and builds one
+# thing of its own: bench_embree for AVX2, in BUILD_DIR-x86-64-v3, for the Embree section. The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
 # povray package); otherwise that section says so. The same holds for the side-by-side tables
 # against Embree 3: bench_embree is built when CMake finds Debian's libembree-dev.
 #

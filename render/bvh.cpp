@@ -222,20 +222,22 @@ void bin_range(const Shared& s, const Binning& binning, uint32_t begin, uint32_t
             ++b.count;
         }
     };
+    const auto reset = [nb](BinSet& set) {
+        for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < nb; ++k) set[a][k] = Bin{Box{}, 0};
+    };
+    reset(out);
     if (end - begin < kTwoSetMin) {
         // Few references: one set, the first, third, ... references before the second, fourth,
         // ... ones. That gives the same bins as two sets merged: min and max keep, of equal
         // values (+0 and -0), the later operand, which is the later reference in this order,
         // and the second set's when merged.
-        for (int a = 0; a < 3; ++a)
-            for (int k = 0; k < nb; ++k) out[a][k] = Bin{Box{}, 0};
         for (uint32_t i = begin; i < end; i += 2) add(out, s.refs[i]);
         for (uint32_t i = begin + 1; i < end; i += 2) add(out, s.refs[i]);
         return;
     }
     BinSet other;
-    for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < nb; ++k) out[a][k] = other[a][k] = Bin{Box{}, 0};
+    reset(other);
     uint32_t i = begin;
     for (; i + 1 < end; i += 2) {
         add(out, s.refs[i]);

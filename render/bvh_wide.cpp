@@ -18,11 +18,6 @@ float node_area(const BvhNode& n) {
     return x * y + y * z + z * x;
 }
 
-// A binary subtree of at most this many primitives becomes one leaf of the wide tree (its
-// primitives are contiguous in the order) when the caller allows it: fewer, fuller nodes, for a
-// primitive test or two more.
-inline constexpr uint32_t kMergeLeaf = 3;
-
 // Per binary node: how many primitives its subtree holds (bits 0-30), and whether it is a leaf of
 // the wide tree (bit 31).
 struct Ranges {
@@ -38,7 +33,7 @@ struct Ranges {
         }
         const uint32_t size =
             fill(nodes, mergeable, nodes[n].first) + fill(nodes, mergeable, nodes[n].first + 1);
-        const bool leaf = size <= kMergeLeaf && mergeable && mergeable(first(nodes, n), size);
+        const bool leaf = size <= kWideMergeLeaf && mergeable && mergeable(first(nodes, n), size);
         size_[n] = size | (leaf ? kLeafBit : 0);
         return size;
     }

@@ -35,8 +35,7 @@ template <int kFilter>
         if (is_triangle(e)) [[likely]] {
             const TriPrim& tri = g.tris[slot];
             double t, b1, b2;
-            if (test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], best.limit, c, t,
-                              b1, b2))
+            if (test_stored_triangle(g, r, tri, best.limit, c, t, b1, b2))
                 best.offer(t, tri.prim, slot, b1, b2);
             continue;
         }
@@ -54,10 +53,8 @@ template <int kFilter>
         const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
         if (is_triangle(e)) [[likely]] {
-            const TriPrim& tri = g.tris[e & kSlotMask];
             double t, b1, b2;
-            if (test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], tmax, c, t, b1, b2))
-                return true;
+            if (test_stored_triangle(g, r, g.tris[e & kSlotMask], tmax, c, t, b1, b2)) return true;
             continue;
         }
         HitRecord h;

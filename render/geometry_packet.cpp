@@ -139,11 +139,11 @@ struct PacketClosestHit {
             vy[i] = _mm_set1_pd(static_cast<double>(a[i][ky]));
             vz[i] = _mm_set1_pd(static_cast<double>(a[i][kz]));
         }
-        c.tri_tests += static_cast<uint64_t>(std::popcount(lanes));
         const __m128d zero = _mm_setzero_pd();
         for (int j = 0; j < kRays; j += 2) {
             const uint32_t pair = lanes >> j & 3u;
             if (pair == 0) continue;
+            c.tri_tests += (pair & 1u) + (pair >> 1);  // std::popcount is a library call on baseline x86-64
             const __m128d o_x = _mm_load_pd(ox + j), o_y = _mm_load_pd(oy + j), o_z = _mm_load_pd(oz + j);
             const __m128d s_x = _mm_load_pd(sx + j), s_y = _mm_load_pd(sy + j);
             __m128d pz[3], x[3], y[3];

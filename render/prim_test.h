@@ -107,6 +107,13 @@ inline bool is_triangle(uint32_t e) {
     return true;
 }
 
+// Triangle `tri` of g.tris, counted.
+[[gnu::always_inline]] inline bool test_stored_triangle(const Impl& g, const RayPre& r, const TriPrim& tri,
+                                                        double limit, Counters& c, double& t, double& b1,
+                                                        double& b2) {
+    return test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, t, b1, b2);
+}
+
 // A sphere; x is its transform (SpherePrim::xform), null for kNoTransform. Counted.
 [[gnu::always_inline]] inline bool test_sphere(const SpherePrim& s, const Transform* x, const RayPre& r,
                                                double limit, Counters& c, double& t) {
@@ -149,9 +156,7 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
     switch ((e >> kKindShift) & 3u) {
         case 0: {
             const TriPrim& tri = g.tris[slot];
-            if (!test_triangle(r, g.verts[tri.v[0]], g.verts[tri.v[1]], g.verts[tri.v[2]], limit, c, h.t,
-                               h.b1, h.b2))
-                return false;
+            if (!test_stored_triangle(g, r, tri, limit, c, h.t, h.b1, h.b2)) return false;
             h.prim = tri.prim;
             return true;
         }

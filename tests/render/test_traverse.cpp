@@ -166,12 +166,13 @@ TEST_CASE("the wide tree's leaves cover every primitive once; small subtrees mer
                 }
             CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
             CHECK(inner_lanes == b.nodes.size() - 1);  // every node but the root is one lane's child
-            // Built with one primitive a leaf: only a merge makes larger ones, and never past 3.
-            if (merge && n >= 3)
+            // Built with one primitive a leaf: only a merge makes larger ones, and never past
+            // kWideMergeLeaf.
+            if (merge && n >= static_cast<int>(kWideMergeLeaf))
                 CHECK(largest > 1);
             else
                 CHECK(largest == 1);
-            CHECK(largest <= 3);
+            CHECK(largest <= kWideMergeLeaf);
         }
     }
 }
