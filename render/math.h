@@ -66,14 +66,24 @@ inline float next_float_down(float v) {
     return std::bit_cast<float>(bits);
 }
 
-// A double rounded to the float at or below (above) it: bounds that stay conservative.
+// A double rounded to the float at or below (above) it: bounds that stay conservative. Written
+// without a branch, since every ray's slab constants round this way and the direction is a coin
+// toss: the nearest float steps one unit away from zero or towards it, which adds ±1 to its
+// bits. The cases next_float_* treats apart cannot need a step here (+inf rounded down is
+// stepped as FLT_MAX + 1 ulp, its bits less one; -0 stepped down gains a sign bit already set).
 inline float to_float_down(double v) {
-    float f = static_cast<float>(v);
-    return static_cast<double>(f) > v ? next_float_down(f) : f;
+    const float f = static_cast<float>(v);
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    const uint32_t sign = static_cast<uint32_t>(static_cast<int32_t>(bits) >> 31);  // 0 or ~0
+    const uint32_t step = (~sign | 1u) & (0u - static_cast<uint32_t>(static_cast<double>(f) > v));
+    return std::bit_cast<float>(bits + step);
 }
 inline float to_float_up(double v) {
-    float f = static_cast<float>(v);
-    return static_cast<double>(f) < v ? next_float_up(f) : f;
+    const float f = static_cast<float>(v);
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    const uint32_t sign = static_cast<uint32_t>(static_cast<int32_t>(bits) >> 31);
+    const uint32_t step = (sign | 1u) & (0u - static_cast<uint32_t>(static_cast<double>(f) < v));
+    return std::bit_cast<float>(bits + step);
 }
 
 // Hides a value's origin from the optimiser, so that `opaque(a*b) - opaque(c*d)` is evaluated

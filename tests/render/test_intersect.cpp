@@ -1,6 +1,10 @@
 // Intersection and surface data of every shape kind: hit distances, normals, the UV layouts of
 // wsd-language.md §4 at known points, transforms, ray filters, counters and build-time validation.
+#include <bit>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <vector>
 
 #include "geometry_test_util.h"
 #include "render/shapes.h"
@@ -403,4 +407,31 @@ TEST_CASE("invalid input gives errors naming the element, never a geometry") {
     w->faces = {{0, 1, 2}};
     w->normals = {{0, 0, 1}};
     CHECK(errors_of({mesh(w)}).size() == 1);
+}
+
+TEST_CASE("doubles round to the float at or below and at or above them") {
+    // The float nearest below (above) v, or v itself, by the definition: what nextafter gives.
+    auto down = [](double v) {
+        float f = static_cast<float>(v);
+        return static_cast<double>(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    };
+    auto up = [](double v) {
+        float f = static_cast<float>(v);
+        return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    };
+    const double big = std::numeric_limits<float>::max(), tiny = std::numeric_limits<float>::denorm_min();
+    std::vector<double> vs = {
+        0.0,   -0.0,   1.0,        -1.0,        0.1,       -0.1,      1e-50,           -1e-50,
+        tiny,  -tiny,  tiny * 0.5, -tiny * 0.5, big,       -big,      big * 1.0000001, -big * 1.0000001,
+        1e300, -1e300, kInf,       -kInf,       3.0000001, -3.0000001};
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 20000; ++i) vs.push_back(std::ldexp(u(rng), static_cast<int>(rng() % 300) - 150));
+    for (double v : vs) {
+        INFO(v);
+        CHECK(std::bit_cast<uint32_t>(to_float_down(v)) == std::bit_cast<uint32_t>(down(v)));
+        CHECK(std::bit_cast<uint32_t>(to_float_up(v)) == std::bit_cast<uint32_t>(up(v)));
+    }
+    CHECK(std::isnan(to_float_down(std::nan(""))));
+    CHECK(std::isnan(to_float_up(std::nan(""))));
 }
