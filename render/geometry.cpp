@@ -27,6 +27,17 @@ template <int kFilter>
 [[gnu::noinline]] void closest_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, Best& best,
                                   Counters& c) {
     prefetch_leaf_vertices(g, first, count);
+#if defined(__SSE2__)
+    if (kFilter != 2 && g.tris_in_order) {
+        test_leaf_triangles(
+            g, r, first, count, c, [&] { return best.limit; },
+            [&](uint32_t k, double t, double b1, double b2) {
+                best.offer(t, g.tris[k].prim, k, b1, b2);
+                return false;
+            });
+        return;
+    }
+#endif
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;
@@ -49,6 +60,12 @@ template <int kFilter>
 [[gnu::noinline]] bool any_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, double tmax,
                               Counters& c) {
     prefetch_leaf_vertices(g, first, count);
+#if defined(__SSE2__)
+    if (kFilter != 2 && g.tris_in_order)
+        return test_leaf_triangles(
+            g, r, first, count, c, [tmax] { return tmax; },
+            [](uint32_t, double, double, double) { return true; });
+#endif
     for (uint32_t k = first; k < first + count; ++k) {
         const uint32_t e = entry_at(g, k);
         if (!passes<kFilter>(e)) continue;

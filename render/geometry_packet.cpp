@@ -139,41 +139,17 @@ struct PacketClosestHit {
             vy[i] = _mm_set1_pd(static_cast<double>(a[i][ky]));
             vz[i] = _mm_set1_pd(static_cast<double>(a[i][kz]));
         }
-        const __m128d zero = _mm_setzero_pd();
         for (int j = 0; j < kRays; j += 2) {
             const uint32_t pair = lanes >> j & 3u;
             if (pair == 0) continue;
             c.tri_tests += (pair & 1u) + (pair >> 1);  // std::popcount is a library call on baseline x86-64
-            const __m128d o_x = _mm_load_pd(ox + j), o_y = _mm_load_pd(oy + j), o_z = _mm_load_pd(oz + j);
-            const __m128d s_x = _mm_load_pd(sx + j), s_y = _mm_load_pd(sy + j);
-            __m128d pz[3], x[3], y[3];
-            for (int i = 0; i < 3; ++i) {
-                pz[i] = _mm_sub_pd(vz[i], o_z);
-                x[i] = _mm_add_pd(_mm_sub_pd(vx[i], o_x), opaque(_mm_mul_pd(s_x, pz[i])));
-                y[i] = _mm_add_pd(_mm_sub_pd(vy[i], o_y), opaque(_mm_mul_pd(s_y, pz[i])));
-            }
-            const __m128d e0 = _mm_sub_pd(opaque(_mm_mul_pd(x[1], y[2])), opaque(_mm_mul_pd(y[1], x[2])));
-            const __m128d e1 = _mm_sub_pd(opaque(_mm_mul_pd(x[2], y[0])), opaque(_mm_mul_pd(y[2], x[0])));
-            const __m128d e2 = _mm_sub_pd(opaque(_mm_mul_pd(x[0], y[1])), opaque(_mm_mul_pd(y[0], x[1])));
-            // Ruled out: no edge function zero (finish_edges would recompute it) and two signs.
-            const __m128d zeros =
-                _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero));
-            const __m128d neg =
-                _mm_or_pd(_mm_or_pd(_mm_cmplt_pd(e0, zero), _mm_cmplt_pd(e1, zero)), _mm_cmplt_pd(e2, zero));
-            const __m128d pos =
-                _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
-            const uint32_t out =
-                static_cast<uint32_t>(_mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos))));
-            for (uint32_t l = pair & ~out; l != 0; l &= l - 1) {
+            EdgesPair e;
+            e.compute(vx, vy, vz, _mm_load_pd(ox + j), _mm_load_pd(oy + j), _mm_load_pd(oz + j),
+                      _mm_load_pd(sx + j), _mm_load_pd(sy + j));
+            for (uint32_t l = pair & ~e.ruled_out(); l != 0; l &= l - 1) {
                 const int lane = std::countr_zero(l);
-                const auto at = [lane](__m128d v) {
-                    return _mm_cvtsd_f64(lane == 0 ? v : _mm_unpackhi_pd(v, v));
-                };
                 TriangleEdges q;
-                q.p0z = at(pz[0]), q.p1z = at(pz[1]), q.p2z = at(pz[2]);
-                q.x0 = at(x[0]), q.y0 = at(y[0]), q.x1 = at(x[1]), q.y1 = at(y[1]), q.x2 = at(x[2]),
-                q.y2 = at(y[2]);
-                q.e0 = at(e0), q.e1 = at(e1), q.e2 = at(e2);
+                e.lane(lane, q);
                 const int k = j + lane;
                 double t, b1, b2;
                 if (finish_edges(*p.pre[k], q) && triangle_hit(q, best[k].limit, t, b1, b2)) {

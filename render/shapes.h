@@ -169,6 +169,47 @@ struct TriangleEdges {
     return finish_edges(r, q);
 }
 
+#if defined(__SSE2__)
+// triangle_edges' translation, shear and edge functions for two (ray, triangle) pairs at once,
+// one per lane, with the same operations and roundings as the scalar code lane by lane: two rays
+// against one triangle (packets) or one ray against two triangles (a leaf). Vertex i of lane l
+// is (vx[i], vy[i], vz[i]) lane l, already permuted to the ray's axes (kx, ky, kz).
+struct EdgesPair {
+    __m128d pz[3], x[3], y[3], e0, e1, e2;
+
+    void compute(const __m128d (&vx)[3], const __m128d (&vy)[3], const __m128d (&vz)[3], __m128d ox,
+                 __m128d oy, __m128d oz, __m128d sx, __m128d sy) {
+        for (int i = 0; i < 3; ++i) {
+            pz[i] = _mm_sub_pd(vz[i], oz);
+            x[i] = _mm_add_pd(_mm_sub_pd(vx[i], ox), opaque(_mm_mul_pd(sx, pz[i])));
+            y[i] = _mm_add_pd(_mm_sub_pd(vy[i], oy), opaque(_mm_mul_pd(sy, pz[i])));
+        }
+        e0 = _mm_sub_pd(opaque(_mm_mul_pd(x[1], y[2])), opaque(_mm_mul_pd(y[1], x[2])));
+        e1 = _mm_sub_pd(opaque(_mm_mul_pd(x[2], y[0])), opaque(_mm_mul_pd(y[2], x[0])));
+        e2 = _mm_sub_pd(opaque(_mm_mul_pd(x[0], y[1])), opaque(_mm_mul_pd(y[0], x[1])));
+    }
+    // Bit l set when lane l's line misses as finish_edges decides: no edge function is zero (it
+    // would be recomputed) and two of them have opposite signs.
+    uint32_t ruled_out() const {
+        const __m128d zero = _mm_setzero_pd();
+        const __m128d zeros =
+            _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero));
+        const __m128d neg =
+            _mm_or_pd(_mm_or_pd(_mm_cmplt_pd(e0, zero), _mm_cmplt_pd(e1, zero)), _mm_cmplt_pd(e2, zero));
+        const __m128d pos =
+            _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
+        return static_cast<uint32_t>(_mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos))));
+    }
+    // Lane l as triangle_edges leaves it before finish_edges.
+    void lane(int l, TriangleEdges& q) const {
+        const auto at = [l](__m128d v) { return _mm_cvtsd_f64(l == 0 ? v : _mm_unpackhi_pd(v, v)); };
+        q.p0z = at(pz[0]), q.p1z = at(pz[1]), q.p2z = at(pz[2]);
+        q.x0 = at(x[0]), q.y0 = at(y[0]), q.x1 = at(x[1]), q.y1 = at(y[1]), q.x2 = at(x[2]), q.y2 = at(y[2]);
+        q.e0 = at(e0), q.e1 = at(e1), q.e2 = at(e2);
+    }
+};
+#endif
+
 // The hit of a ray whose line meets the triangle (triangle_edges true): δt < t < limit.
 [[gnu::always_inline]] inline bool triangle_hit(const TriangleEdges& q, double limit, double& t_out,
                                                 double& b1_out, double& b2_out) {
