@@ -397,17 +397,20 @@ double rate_of(size_t rays, F&& pass, size_t& found) {
     return static_cast<double>(rays) / (t1 - t0);
 }
 
+// `work`: wsd's RayStats over one pass of the rays (child boxes and triangles tested).
 void print_row(const std::string& scene, const std::string& query, const Pair& p, size_t rays, size_t found,
-               const Compare& c) {
+               const Compare& c, const RayStats& work) {
     const double w = median(p.wsd), e = median(p.embree);
+    const double n = static_cast<double>(rays);
+    const double boxes = static_cast<double>(work.box_tests) / n,
+                 tris = static_cast<double>(work.triangle_tests) / n;
     std::printf(
         "%-8s %-16s wsd %7.2f M/CPU-s  Embree %7.2f M/CPU-s  ratio %.2f  (%zu rays, %.1f %% %s; %zu differ: "
-        "%s)\n",
-        scene.c_str(), query.c_str(), w * 1e-6, e * 1e-6, w / e, rays,
-        100.0 * static_cast<double>(found) / static_cast<double>(rays),
-        query.rfind("shadow", 0) == 0 ? "occluded" : "hit", c.differ, c.text().c_str());
-    std::printf("row|%s|%s|%.3f|%.3f|%.2f|%zu|%zu|%s|%.1e\n", scene.c_str(), query.c_str(), w * 1e-6,
-                e * 1e-6, w / e, rays, c.differ, c.text().c_str(), c.max_rel_t);
+        "%s; wsd per ray: %.1f child boxes, %.2f triangle tests)\n",
+        scene.c_str(), query.c_str(), w * 1e-6, e * 1e-6, w / e, rays, 100.0 * static_cast<double>(found) / n,
+        query.rfind("shadow", 0) == 0 ? "occluded" : "hit", c.differ, c.text().c_str(), boxes, tris);
+    std::printf("row|%s|%s|%.3f|%.3f|%.2f|%zu|%zu|%s|%.1e|%.1f|%.2f\n", scene.c_str(), query.c_str(),
+                w * 1e-6, e * 1e-6, w / e, rays, c.differ, c.text().c_str(), c.max_rel_t, boxes, tris);
 }
 
 int run_scene(const SceneDef& d, int passes) {
@@ -564,7 +567,9 @@ int run_scene(const SceneDef& d, int passes) {
         // comparison of single rays stands for them.
         const Compare c =
             qq.occlusion ? compare_occluded(d, *g, scene, *qq.set) : compare_closest(d, *g, scene, *qq.set);
-        print_row(label, qq.name, rates[q], qq.set->rays.size(), found[q], c);
+        stats = RayStats{};
+        qq.wsd(*qq.set);
+        print_row(label, qq.name, rates[q], qq.set->rays.size(), found[q], c, stats);
     }
     return 0;
 }
