@@ -344,7 +344,7 @@ embree_table() {
   local args=(); ((quick)) && args=(--quick)
   # A first run after the machine idled measured both sides about a quarter slower (a VM's CPU
   # takes seconds to come up to speed): a short run first, not recorded.
-  "$build/bench_embree" --quick cornell >/dev/null
+  "$build/bench_embree" --quick mesh1m >/dev/null
   log "bench_embree ${args[*]}"
   "$build/bench_embree" "${args[@]}" >"$tmp/embree.txt"
   # The million-triangle mesh again with Embree in its robust mode (no cracks at shared edges).
