@@ -130,7 +130,14 @@ struct Range {
 
 constexpr uint32_t kSubtreeMin = 1u << 14;
 constexpr int kSahDepthCap = 40;  // past it, object-median splits keep the depth < 64
-constexpr int kMaxBins = 32;
+constexpr int kMaxBins = 64;
+// Nodes above depth kTopDepth (at most 255 of them) are binned with kTopBins to an axis. Their
+// centroid bounds span the whole scene, and with 16 bins an object small against it (a mesh in
+// a room) fell into a few bins: on a 10⁶-triangle mesh in a room of 12 triangles this cut the
+// boxes a camera ray tests by a quarter (86.7 to 65.4; 58.5 to 46.5 at 10⁴ triangles), as 64
+// bins at every node did, for the binning of a few hundred nodes.
+constexpr int kTopDepth = 8;
+constexpr int kTopBins = 64;
 // Ranges of at least kChunkedBinMin references are binned in kBinChunks fixed chunks whose bins
 // are merged in chunk order, on two threads when one is idle: the same chunks and the same merge
 // whatever the thread count, so the split (and every bound, down to the sign of a zero) is too.
@@ -260,10 +267,12 @@ bool claim_thread(Shared& s) {
     return false;
 }
 
-// Best SAH split over all three axes (axis -1 when the centroids do not spread).
-Split find_split(Shared& s, const Range& r, Binning& binning) {
+// Best SAH split over all three axes (axis -1 when the centroids do not spread) for a node at
+// `depth`.
+Split find_split(Shared& s, const Range& r, Binning& binning, int depth) {
     const uint32_t n = r.end - r.begin;
-    const int nb = std::min({s.opt.bins, kMaxBins, static_cast<int>(n < 4 ? 4 : n)});
+    const int wanted = depth < kTopDepth ? std::max(s.opt.bins, kTopBins) : s.opt.bins;
+    const int nb = std::min({wanted, kMaxBins, static_cast<int>(n < 4 ? 4 : n)});
     binning.nb = nb;
     bool spread = false;
     float cl[4], ch[4];
@@ -393,7 +402,7 @@ void build_node(Shared& s, Task& task, uint32_t node, const Range& r, int depth)
     bool split_done = false;
     if (depth < kSahDepthCap) {
         Binning binning{};
-        Split sp = find_split(s, r, binning);
+        Split sp = find_split(s, r, binning, depth);
         if (sp.axis >= 0) {
             float area = r.box.half_area();
             float split_cost = s.opt.traversal_cost +

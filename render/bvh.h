@@ -20,7 +20,7 @@ inline constexpr int kMaxLeafCount = 255;
 
 struct BvhOptions {
     int max_leaf = 4;  // primitives per leaf at most (taken as 1 to kMaxLeafCount)
-    int bins = 16;     // SAH bins per axis
+    int bins = 16;     // SAH bins per axis (at least kTopBins for the first levels: render/bvh.cpp)
     float traversal_cost = 1.0f;
     float intersect_cost = 1.0f;
     int threads = 1;  // 0 = all cores
