@@ -73,12 +73,13 @@ struct Geometry::Impl {
     std::vector<InstancePrim> instances;                 // instances of prototypes
     std::vector<std::unique_ptr<Prototype>> prototypes;  // SceneSpec::prototypes, built when used
     std::vector<BvhWideNode> nodes;  // the BVH in its wide traversal form; empty without BVH
-    std::vector<uint32_t> order;     // encoded entries; leaf ranges (BVH) or canonical order
+    std::vector<uint32_t> order;     // encoded entries; leaf ranges (BVH) or canonical order; empty
+                                     // with tris_in_order
     std::vector<uint8_t> inherits;   // a prototype's: per order entry, 1 when its material is inherited
     bool use_bvh = true;
     bool has_transmissive = false;
-    // Every entry of order is an opaque triangle and order[k] names tris[k]: a BVH over
-    // triangles alone, whose leaves then read tris without order (geometry_build.cpp).
+    // Every entry is an opaque triangle and entry k names tris[k]: a BVH over triangles alone,
+    // whose leaves then read tris directly; order is not stored (entry_at, geometry_build.cpp).
     bool tris_in_order = false;
     size_t primitive_count = 0;
     int bvh_depth = 0;

@@ -187,7 +187,7 @@ bool InstanceRay::widen(const Transform& xi, const Bounds3f& root, double limit)
 }
 
 void InstanceRay::test(uint32_t k, Best& best) {
-    const uint32_t e = pg.order[k];
+    const uint32_t e = detail::entry_at(pg, k);
     if (!passes(k, e)) return;
     const uint32_t slot = e & kSlotMask;
     double t = 0, b1 = 0, b2 = 0;
