@@ -1,4 +1,6 @@
 // The collapse of the binary build tree into the wide traversal tree (BvhWideNode).
+#include <algorithm>
+#include <array>
 #include <limits>
 
 #include "render/bvh.h"
@@ -18,23 +20,78 @@ float node_area(const BvhNode& n) {
     return x * y + y * z + z * x;
 }
 
-// Per binary node: how many primitives its subtree holds (bits 0-30), and whether it is a leaf of
-// the wide tree (bit 31).
+// Cost weights of the collapse (the surface area heuristic on the wide tree): visiting a wide
+// node, and testing one primitive of a leaf, each per unit of area of the box that leads there.
+// Weights of a primitive from 0.3 to 1.5 node visits traced a mesh's rays at the same rates
+// within the machine's noise (docs/performance.md).
+constexpr float kNodeCost = 1.0f;
+constexpr float kPrimCost = 0.8f;
+
+// Per binary node: how many primitives its subtree holds (bits 0-30), whether it is a leaf of the
+// wide tree (bit 31), and the least cost of its subtree as j lanes of a wide node (cost[j - 1],
+// j = 1 .. kBvhWidth): one lane (a leaf or a wide node of its own), or its children's subtrees
+// spread over j lanes. The optimal collapse by dynamic programming, after Ylitie, Karras and
+// Laine, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" (2017).
 struct Ranges {
     static constexpr uint32_t kLeafBit = 1u << 31;
     std::vector<uint32_t> size_;
-    Ranges(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable) : size_(nodes.size()) {
-        fill(nodes, mergeable, 0);
+    std::vector<std::array<float, kBvhWidth>> cost_;
+    // Filled bottom up: the subtrees below depth kSplitDepth on `threads` threads, then the top.
+    static constexpr int kSplitDepth = 6;
+    Ranges(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
+        : size_(nodes.size()), cost_(nodes.size()) {
+        std::vector<uint32_t> roots;
+        below(nodes, 0, kSplitDepth, roots);
+        ParallelOptions options;
+        options.threads = threads;
+        parallel_for(roots.size(), options, [&](size_t j, int) { fill(nodes, mergeable, roots[j], -1); });
+        fill(nodes, mergeable, 0, kSplitDepth);
     }
-    uint32_t fill(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, uint32_t n) {
+    // The nodes `depth` levels below n (or leaves above that), into roots.
+    static void below(const std::vector<BvhNode>& nodes, uint32_t n, int depth,
+                      std::vector<uint32_t>& roots) {
+        if (depth == 0 || nodes[n].count > 0) {
+            roots.push_back(n);
+            return;
+        }
+        below(nodes, nodes[n].first, depth - 1, roots);
+        below(nodes, nodes[n].first + 1, depth - 1, roots);
+    }
+    // The least cost of binary node n's children over j lanes (2 <= j), and how many of them
+    // go to the first child (the fewest of those that tie).
+    float spread(const std::vector<BvhNode>& nodes, uint32_t n, int j, int* first_lanes) const {
+        const auto& a = cost_[nodes[n].first];
+        const auto& b = cost_[nodes[n].first + 1];
+        float best = std::numeric_limits<float>::infinity();
+        for (int k = 1; k < j; ++k) {
+            const float c = a[k - 1] + b[j - k - 1];
+            if (c < best) {
+                best = c;
+                if (first_lanes) *first_lanes = k;
+            }
+        }
+        return best;
+    }
+    // Fills n's subtree and returns its size; a node `depth` levels below n is taken as filled
+    // already (depth < 0: none is).
+    uint32_t fill(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, uint32_t n, int depth) {
+        if (depth == 0) return size(n);
+        const float area = node_area(nodes[n]);
+        auto& c = cost_[n];
         if (nodes[n].count > 0) {
             size_[n] = nodes[n].count | kLeafBit;
+            c.fill(area * kPrimCost * static_cast<float>(nodes[n].count));
             return nodes[n].count;
         }
-        const uint32_t size =
-            fill(nodes, mergeable, nodes[n].first) + fill(nodes, mergeable, nodes[n].first + 1);
-        const bool leaf = size <= kWideMergeLeaf && mergeable && mergeable(first(nodes, n), size);
+        const uint32_t size = fill(nodes, mergeable, nodes[n].first, depth - 1) +
+                              fill(nodes, mergeable, nodes[n].first + 1, depth - 1);
+        const float inner = area * kNodeCost + spread(nodes, n, kBvhWidth, nullptr);
+        const float as_leaf = area * kPrimCost * static_cast<float>(size);
+        const bool leaf =
+            size <= kWideMergeLeaf && as_leaf <= inner && mergeable && mergeable(first(nodes, n), size);
         size_[n] = size | (leaf ? kLeafBit : 0);
+        c[0] = leaf ? as_leaf : inner;
+        for (int j = 2; j <= kBvhWidth; ++j) c[j - 1] = std::min(c[j - 2], spread(nodes, n, j, nullptr));
         return size;
     }
     bool leaf(uint32_t n) const { return (size_[n] & kLeafBit) != 0; }
@@ -44,24 +101,29 @@ struct Ranges {
         while (nodes[n].count == 0) n = nodes[n].first;
         return nodes[n].first;
     }
+    // The lanes of binary node n's subtree given at most j of them, appended to kids.
+    void lanes(const std::vector<BvhNode>& nodes, uint32_t n, int j, uint32_t* kids, int& count) const {
+        const auto& c = cost_[n];
+        while (j > 1 && c[j - 2] <= c[j - 1]) --j;  // the fewest lanes that cost the least
+        if (j == 1) {
+            kids[count++] = n;
+            return;
+        }
+        int k = 1;
+        spread(nodes, n, j, &k);
+        lanes(nodes, nodes[n].first, k, kids, count);
+        lanes(nodes, nodes[n].first + 1, j - k, kids, count);
+    }
 };
 
-// The children of the wide node for inner node `n`: its two children, opening the largest inner
-// one until there are kBvhWidth (ties go to the first in lane order). Returns their number.
+// The children of the wide node for inner node `n`: its two children's subtrees spread over at
+// most kBvhWidth lanes at the least cost. Returns their number.
 int wide_children(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, uint32_t* kids) {
-    kids[0] = nodes[n].first;
-    kids[1] = nodes[n].first + 1;
-    int count = 2;
-    while (count < kBvhWidth) {
-        int open = -1;
-        for (int i = 0; i < count; ++i)
-            if (!r.leaf(kids[i]) && (open < 0 || node_area(nodes[kids[i]]) > node_area(nodes[kids[open]])))
-                open = i;
-        if (open < 0) break;
-        uint32_t inner = kids[open];
-        kids[open] = nodes[inner].first;
-        kids[count++] = nodes[inner].first + 1;
-    }
+    int k = 1;
+    r.spread(nodes, n, kBvhWidth, &k);
+    int count = 0;
+    r.lanes(nodes, nodes[n].first, k, kids, count);
+    r.lanes(nodes, nodes[n].first + 1, kBvhWidth - k, kids, count);
     return count;
 }
 
@@ -177,7 +239,7 @@ std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const Wi
     // Counted first: the exact size, without a shrinking copy. The top two levels are written
     // here; the subtrees below them are counted, then written each to its own depth-first place,
     // in parallel: the same nodes as one depth-first walk, whatever the thread count.
-    const Ranges r(nodes, mergeable);
+    const Ranges r(nodes, mergeable, threads);
     std::vector<uint32_t> roots;
     size_t total = subtrees_below(nodes, r, 0, 1, roots);
     std::vector<uint32_t> sizes(roots.size());
