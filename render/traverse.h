@@ -10,6 +10,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <utility>
 
 #include "render/aabb.h"
 #include "render/bvh.h"
@@ -18,8 +19,9 @@ namespace wsd::render {
 
 // The order in which the children that a node's test enters are visited.
 enum class WalkOrder {
-    // Nearest entry distance first; a waiting child is skipped when, by the time it is popped,
-    // the query no longer finds it open (closest hits, whose limit shrinks with each hit).
+    // Nearest entry distance first (of a node's entered children, and the last child left
+    // waiting); a waiting child is skipped when, by the time it is popped, the query no longer
+    // finds it open (closest hits, whose limit shrinks with each hit).
     NearestFirst,
     // Depth first, the highest lane first, no distances (any hit: the first one ends the walk).
     DepthFirst,
@@ -161,7 +163,13 @@ template <class Q>
         }
         bool have = mask != 0;
         Child next{};
-        if (have) next = detail::push_children<Q::kOrder>(node, index, mask, tn, stack, sp);
+        if (have) {
+            next = detail::push_children<Q::kOrder>(node, index, mask, tn, stack, sp);
+            // A nearer child waiting on the stack goes first: a box that holds the origin (t = 0)
+            // would otherwise lead into children beyond a nearer waiting one, whose hit ends them.
+            if constexpr (Q::kOrder == WalkOrder::NearestFirst)
+                if (sp > 0 && stack[sp - 1].t < next.t) std::swap(next, stack[sp - 1]);
+        }
         for (;;) {
             if (have) {
                 if (next.count == 0) {
