@@ -32,9 +32,10 @@
 // (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST; its own choice of ISA at run time).
 //
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
-// one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [SCENE...] (quick:
-// meshes of a hundredth the size, one pass, and no mesh10m unless named; robust: Embree in its
-// robust mode, RTC_SCENE_FLAG_ROBUST; SCENE: cornell, mesh1m, mesh10m).
+// one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [--baseline] [SCENE...]
+// (quick: meshes of a hundredth the size, one pass, and no mesh10m unless named; robust: Embree
+// in its robust mode, RTC_SCENE_FLAG_ROBUST; baseline: wsd's single-ray walks test nodes with
+// baseline x86-64 instructions even where the CPU has AVX; SCENE: cornell, mesh1m, mesh10m).
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
 
@@ -585,10 +586,13 @@ int main(int argc, char** argv) {
             quick = true;
         else if (a == "--robust")
             g_robust = true;
+        else if (a == "--baseline")
+            set_avx_walk(false);
         else if (a == "cornell" || a == "mesh1m" || a == "mesh10m")
             only.push_back(a);
         else {
-            std::printf("usage: bench_embree [--quick] [--robust] [cornell|mesh1m|mesh10m]...\n");
+            std::printf(
+                "usage: bench_embree [--quick] [--robust] [--baseline] [cornell|mesh1m|mesh10m]...\n");
             return 2;
         }
     }
@@ -598,9 +602,9 @@ int main(int argc, char** argv) {
     };
     std::printf(
         "Embree %d.%d.%d, %s mode, one tracing thread; t tolerance %.0e, edge tolerance %.0e (of the float "
-        "scale)\n",
+        "scale); wsd's single-ray node test: %s\n",
         RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, g_robust ? "robust" : "default",
-        kTRelTolerance, kEdgeTolerance);
+        kTRelTolerance, kEdgeTolerance, avx_walk() ? "AVX" : "baseline x86-64");
     int status = 0;
     if (wanted("cornell")) status = run_scene(cornell_scene(), quick ? 1 : 5);
     if (status == 0 && wanted("mesh1m"))

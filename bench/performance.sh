@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Measures wsd and writes docs/performance.md from what it measured: the machine and the date at
 # the top, then one table per benchmark, each with the command that regenerates it. It runs the
-# programs of an existing build directory (default build/, made by ./setup.sh) and builds one
-# thing of its own: bench_embree for AVX2, in BUILD_DIR-x86-64-v3, for the Embree section. The Cornell box is compared with POV-Ray when `povray` is installed (Debian's
-# povray package); otherwise that section says so. The same holds for the side-by-side tables
+# programs of an existing build directory (default build/, made by ./setup.sh). The Cornell box
+# is compared with POV-Ray when `povray` is installed (Debian's povray package); otherwise that
+# section says so. The same holds for the side-by-side tables
 # against Embree 3: bench_embree is built when CMake finds Debian's libembree-dev.
 #
 # Usage: bench/performance.sh [--quick] [--baseline WSD] [--only NAMES] [-o OUT] [BUILD_DIR]
@@ -376,7 +376,7 @@ embree_table() {
   awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s | %s, %s | %d: %s |\n", $2, $3, $7, $4, $5, $6, $11, $12, $8, $9 }' "$f" >>"$page"
   para "" "Child boxes are those of every wide node a ray's walk tests (\`box_tests\`); a packet tests a" \
        "node once for its 16 rays, so its figure is a sixteenth of the packet's."
-  embree_arch_table
+  embree_baseline_table
   embree_short_of "$f"
   local tol; tol=$(awk '/^Embree/ { for (i = 1; i < NF; i++) if ($i == "tolerance") { v = $(i + 1); sub(/,$/, "", v); print v; exit } }' "$f")
   para "" "A hit agrees when it is on the same primitive (any of a box's triangles counts as the box) at" \
@@ -394,39 +394,39 @@ embree_table() {
 
 # Every row of the default-mode table below 0.8× Embree, named, and what sets the two apart.
 embree_short_of() {
-  local short robust isa="baseline x86-64 (SSE2)"
+  local short robust isa="no AVX-512" walk="baseline x86-64 (this machine has no AVX)"
   short=$(awk -F'|' '$1 == "row" && $2 !~ /robust/ && $6 + 0 < 0.8 { printf "%s%s %s (%s)", sep, $2, $3, $6; sep = "; " }' "$1")
   robust=$(awk -F'|' '$1 == "row" && $2 ~ /robust/ { printf "%s%s %s", sep, $3, $6; sep = ", " }' "$1")
   grep -qw avx512f /proc/cpuinfo && isa="AVX-512, which Embree selects at run time (its 16-ray packets then fill one register)"
+  grep -q "node test: AVX" "$1" && walk="AVX, chosen at run time"
   para "" "Below 0.8× Embree in its default mode: ${short:-none}. What sets the two apart on the meshes:" \
        "wsd tests each triangle watertight in double precision (two triangles a ray, or two rays a" \
        "triangle, in one SSE2 instruction), through a leaf of at most 3 triangles whose vertices are" \
        "shared and looked up by index; Embree's default mode tests four triangles at once in single" \
-       "precision, with no watertightness, from leaves that hold each triangle's own vertex data. This machine's CPU has" \
-       "$isa; wsd's default build uses baseline x86-64 only. Each wide node a ray visits costs wsd a" \
+       "precision, with no watertightness, from leaves that hold each triangle's own vertex data. This" \
+       "machine's CPU has $isa. wsd's single-ray walks test a node's eight boxes with $walk;" \
+       "its packets test them with SSE (4 lanes a group) and bound the 16 rays by interval arithmetic," \
+       "one packet a node, where Embree tests each ray. Each wide node a ray visits costs wsd a" \
        "chain of dependent steps (load the node, test its boxes, choose the lane, load the child's index," \
        "compute its address) whose length wider SIMD does not change. Against Embree's robust mode," \
        "which is watertight too, wsd / Embree on mesh1m is: ${robust:-not measured}."
 }
 
-# The million-triangle mesh again, with wsd built for AVX2 (-DWSD_ARCH=x86-64-v3: a node's eight
-# boxes in one 8-lane test) where the machine has it.
-embree_arch_table() {
-  local arch=x86-64-v3 dir="$build-x86-64-v3"
-  if ! grep -qw avx2 /proc/cpuinfo; then
-    para "" "Not measured with \`-DWSD_ARCH=$arch\`: this machine has no AVX2."
+# The million-triangle mesh again, with wsd's single-ray walks held to baseline x86-64 node tests
+# (bench_embree --baseline) where the machine has AVX: what the run-time choice gains.
+embree_baseline_table() {
+  if ! grep -qw avx /proc/cpuinfo; then
+    para "" "wsd's walks test nodes with baseline x86-64 instructions here: this machine has no AVX."
     return 0
   fi
-  log "building bench_embree with -DWSD_ARCH=$arch in $dir"
-  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release -DWSD_ARCH=$arch -DWSD_TESTS=OFF >/dev/null
-  cmake --build "$dir" -j2 --target bench_embree >/dev/null
   local args=(); ((quick)) && args=(--quick)
-  log "$dir/bench_embree ${args[*]} mesh1m"
-  "$dir/bench_embree" "${args[@]}" mesh1m >"$tmp/embree-arch.txt"
-  para "" "The same mesh1m rays with wsd built by \`cmake -DWSD_ARCH=$arch\` (AVX2: a node's eight" \
-       "boxes in one 8-lane test; contraction stays off, so the hits are the same), run after the table above:" \
+  log "bench_embree ${args[*]} --baseline mesh1m"
+  "$build/bench_embree" "${args[@]}" --baseline mesh1m >"$tmp/embree-baseline.txt"
+  para "" "The same mesh1m rays with wsd's single-ray walks held to baseline x86-64 node tests" \
+       "(\`bench_embree --baseline\`: two 4-lane SSE tests a node instead of one 8-lane AVX test;" \
+       "the hits are the same), run after the table above:" \
        "" "| scene | rays | count | wsd M/CPU-s | Embree M/CPU-s | wsd / Embree |" "|---|---|---:|---:|---:|---:|"
-  awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s |\n", $2, $3, $7, $4, $5, $6 }' "$tmp/embree-arch.txt" >>"$page"
+  awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s |\n", $2, $3, $7, $4, $5, $6 }' "$tmp/embree-baseline.txt" >>"$page"
 }
 
 # ---------------------------------------------------------------- CSG

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <limits>
 #include <utility>
-#if defined(__AVX__)
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// The AVX node test is compiled into every x86-64 build and chosen at run time (avx_walk()).
+#define WSD_AVX_DISPATCH 1
 #include <immintrin.h>
 #elif defined(__SSE2__)
 #include <emmintrin.h>
@@ -141,20 +143,7 @@ struct RayBoxTest {
     int hit(const BvhWideNode& node, float t_limit, float* t_entry) const {
         const float* base = &node.lo[0][0];
 #if defined(__AVX__)
-        // Built for AVX (WSD_ARCH): the same operations on all eight lanes at once.
-        static_assert(kBvhWidth == 8);
-        __m256 tn = _mm256_setzero_ps(), tf = _mm256_set1_ps(t_limit);
-        for (int a = 0; a < 3; ++a) {
-            const __m256 on = _mm256_set_m128(o_near4[a], o_near4[a]),
-                         of = _mm256_set_m128(o_far4[a], o_far4[a]);
-            const __m256 iv = _mm256_set_m128(inv4[a], inv4[a]);
-            __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + near_off[a]), on), iv);
-            __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + far_off[a]), of), iv);
-            tn = _mm256_max_ps(t0, tn);  // returns its second operand when one is NaN, as maxps
-            tf = _mm256_min_ps(t1, tf);
-        }
-        _mm256_storeu_ps(t_entry, tn);
-        return _mm256_movemask_ps(_mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _CMP_LE_OQ));
+        return hit_avx(node, t_limit, t_entry);  // built for AVX (WSD_ARCH)
 #elif defined(__SSE2__)
         int mask = 0;
         for (int g = 0; g < kBvhGroups; ++g) {
@@ -187,7 +176,47 @@ struct RayBoxTest {
         return mask;
 #endif
     }
+
+#if defined(WSD_AVX_DISPATCH)
+    // hit's operations on all eight lanes at once, for CPUs with AVX (avx_walk()): a function of
+    // its own, so that code for every x86-64 holds it; only functions built for AVX call it.
+    // Bit for bit the same results (the same IEEE operations lane by lane, no contraction).
+    [[gnu::target("avx"), gnu::always_inline]] inline int hit_avx(const BvhWideNode& node, float t_limit,
+                                                                  float* t_entry) const {
+        static_assert(kBvhWidth == 8);
+        const float* base = &node.lo[0][0];
+        __m256 tn = _mm256_setzero_ps(), tf = _mm256_set1_ps(t_limit);
+        for (int a = 0; a < 3; ++a) {
+            const __m256 on = _mm256_set1_ps(o_near[a]), of = _mm256_set1_ps(o_far[a]);
+            const __m256 iv = _mm256_set1_ps(inv[a]);
+            __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + near_off[a]), on), iv);
+            __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + far_off[a]), of), iv);
+            tn = _mm256_max_ps(t0, tn);  // returns its second operand when one is NaN, as maxps
+            tf = _mm256_min_ps(t1, tf);
+        }
+        _mm256_storeu_ps(t_entry, tn);
+        return _mm256_movemask_ps(_mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(kWiden)), _CMP_LE_OQ));
+    }
+#endif
 };
+
+// True when one ray's closest-hit and any-hit walks (Geometry::intersect, occluded) test a node's
+// children with RayBoxTest::hit_avx: on CPUs with AVX, detected at start-up, unless
+// set_avx_walk(false) said otherwise (render/cpu_features.cpp). Packets, shadow shafts and
+// instances' inner walks keep the baseline test.
+#if defined(WSD_AVX_DISPATCH)
+extern bool g_avx_walk;
+inline bool avx_walk() {
+    return g_avx_walk;
+}
+#else
+inline bool avx_walk() {
+    return false;
+}
+#endif
+// Chooses the baseline (false) or the AVX node test (true, only where the CPU has AVX); returns
+// whether AVX is used now. For comparisons (tests, benchmarks); the results are the same.
+bool set_avx_walk(bool on);
 
 // Whether the segment a + t·d, t in [0, 1], meets the closed box [lo, hi]: the slab test in double
 // precision, for the handful of boxes of a conservative cull (Scene::may_cross_transmissive),

@@ -130,64 +130,19 @@ template <WalkOrder kOrder, class Child>
 //                                 matter;
 //   void prefetch_leaf(uint32_t first) const   optional: fetch the data of a leaf that will be
 //                                 visited (a hint; it must not change what the query finds).
-template <class Q>
-[[gnu::always_inline]] inline bool walk_bvh(const BvhWideNode* nodes, Q& q, uint64_t& boxes) {
-    using Child = typename Q::Child;
-    Child stack[kWalkStack];
-    int sp = 0;
-    uint32_t index = 0;
-    for (;;) {
-        const BvhWideNode& node = nodes[index];
-        alignas(16) float tn[kBvhWidth];
-        int mask = q.enter(node, index, tn);
-        boxes += detail::kChildCount[node.child_mask()];
-        // The children to be visited, fetched while the walk goes on: those that wait on the
-        // stack are then in cache when popped (inner nodes; leaves' data when the query says
-        // where it is).
-        for (int m = mask; m != 0; m &= m - 1) {
-            const int i = std::countr_zero(static_cast<unsigned>(m));
-            if (node.count(i) == 0) {
-                const char* p = reinterpret_cast<const char*>(&nodes[node.first(i)]);
-                for (size_t line = 0; line < sizeof(BvhWideNode); line += 64) __builtin_prefetch(p + line);
-            } else if constexpr (requires { q.prefetch_leaf(node.first(i)); }) {
-                q.prefetch_leaf(node.first(i));
-            }
-        }
-        if constexpr (Q::kOrder == WalkOrder::LeavesFirst) {
-            for (int m = mask; m != 0; m &= m - 1) {
-                const int i = std::countr_zero(static_cast<unsigned>(m));
-                if (node.count(i) == 0) continue;
-                mask &= ~(1 << i);
-                if (q.leaf(Child::at(node, index, i, tn[i]))) return true;
-            }
-        }
-        bool have = mask != 0;
-        Child next{};
-        if (have) {
-            next = detail::push_children<Q::kOrder>(node, index, mask, tn, stack, sp);
-            // A nearer child waiting on the stack goes first: a box that holds the origin (t = 0)
-            // would otherwise lead into children beyond a nearer waiting one, whose hit ends them.
-            if constexpr (Q::kOrder == WalkOrder::NearestFirst)
-                if (sp > 0 && stack[sp - 1].t < next.t) std::swap(next, stack[sp - 1]);
-        }
-        for (;;) {
-            if (have) {
-                if (next.count == 0) {
-                    index = next.first;
-                    break;
-                }
-                // With LeavesFirst only inner children wait: one call site, which the compiler inlines.
-                if constexpr (Q::kOrder != WalkOrder::LeavesFirst)
-                    if (q.leaf(next)) return true;
-            }
-            if (sp == 0) return false;
-            next = stack[--sp];
-            if constexpr (Q::kOrder == WalkOrder::NearestFirst)
-                have = q.open(next.t);
-            else
-                have = true;
-        }
-    }
-}
+//
+// walk_bvh_avx is the same walk built for AVX (x86-64 only; call it where avx_walk() is true):
+// the query provides enter_avx, with enter's meaning, [[gnu::target("avx"), gnu::always_inline]]
+// (RayBoxTest::hit_avx). Both are written once, in render/walk_bvh.inc.
+#define WSD_WALK_NAME walk_bvh
+#define WSD_WALK_ATTRIBUTES gnu::always_inline
+#define WSD_WALK_ENTER enter
+#include "render/walk_bvh.inc"
+#if defined(WSD_AVX_DISPATCH)
+#define WSD_WALK_NAME walk_bvh_avx
+#define WSD_WALK_ATTRIBUTES gnu::always_inline, gnu::target("avx")
+#define WSD_WALK_ENTER enter_avx
+#include "render/walk_bvh.inc"
+#endif
 
 }  // namespace wsd::render

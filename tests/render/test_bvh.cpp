@@ -56,6 +56,43 @@ TEST_CASE("R26 BVH equals brute force: same primitive and bit-identical t on ran
     }
 }
 
+TEST_CASE("R26 the AVX node test chosen at run time answers as the baseline one, bit for bit") {
+    // On a CPU without AVX both runs take the baseline walk and agree trivially.
+    const bool had = avx_walk();
+    Rng rng(20261128);
+    const int scenes = 20, rays = ray_budget(40000) / scenes;
+    for (int s = 0; s < scenes; ++s) {
+        const double size = rng.log_uniform(-3, 3);
+        const SceneSpec spec = random_scene(rng, rng.integer(1, 400), size);
+        auto g = build_ok(spec, true);
+        REQUIRE(g);
+        INFO("scene " << s << " size " << size << ", AVX available " << set_avx_walk(true));
+        for (int i = 0; i < rays; ++i) {
+            const Ray r = random_ray(rng, size);
+            const double tmax = rng.uniform() < 0.5 ? kInf : rng.uniform(0, 2);
+            const auto filter = static_cast<RayFilter>(rng.integer(0, 2));
+            RayStats sa, sb;
+            set_avx_walk(true);
+            const auto ha = g->intersect(r, tmax, sa, filter);
+            const bool oa = g->occluded(r, tmax, sa, filter);
+            set_avx_walk(false);
+            const auto hb = g->intersect(r, tmax, sb, filter);
+            const bool ob = g->occluded(r, tmax, sb, filter);
+            REQUIRE(ha.has_value() == hb.has_value());
+            if (ha) {
+                REQUIRE(ha->prim == hb->prim);
+                REQUIRE(ha->t == hb->t);
+                REQUIRE(ha->b1 == hb->b1);
+                REQUIRE(ha->b2 == hb->b2);
+            }
+            REQUIRE(oa == ob);
+            REQUIRE(sa.box_tests == sb.box_tests);  // the same nodes, the same lanes entered
+            REQUIRE(sa.triangle_tests == sb.triangle_tests);
+        }
+    }
+    set_avx_walk(had);
+}
+
 TEST_CASE("R26 a BVH over opaque triangles alone reads its leaves without order, as brute force") {
     // A spiky closed mesh and loose triangles: every entry an opaque triangle, stored in leaf
     // order, so leaves read tris[k] directly and order is not kept. A transmissive triangle or a
