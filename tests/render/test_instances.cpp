@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "render/aabb.h"
 #include "render/effects.h"
 #include "render/geometry.h"
 #include "tests/render/scene_builders.h"
@@ -174,6 +175,12 @@ TEST_CASE("instances render bit-identical to the same shapes written out flat") 
     }
     spec.shapes.push_back(box({-3, -1, 3}, {-2, 0.5, 3.5}, 5));
     require_identical(spec, flattened(spec));
+    // The walks' baseline node test where the default is AVX (render/aabb.h): the same image.
+    const bool avx = wsd::render::avx_walk();
+    wsd::render::set_avx_walk(!avx);
+    const auto other = render_spec(spec);
+    wsd::render::set_avx_walk(avx);
+    CHECK(other.film.rgb == render_spec(spec).film.rgb);
     // Without the top-level BVH (every entry tested): the same image again.
     std::vector<SpecError> errors;
     const auto brute = wsd::render::build_scene(spec, errors, false, 1);
