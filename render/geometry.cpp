@@ -83,79 +83,36 @@ template <int kFilter>
 // The BVH walk of a closest-hit query: nearest child first, waiting children pruned by the
 // running hit's distance (in floats, rounded up).
 template <int kFilter>
-struct ClosestHit {
+struct ClosestHit : OneRayTest {
     static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
     using Child = BvhChild;
     const Impl& g;
     const RayPre& r;
     Best& best;
     Counters& c;
-    float limit;
 
-    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.box.hit(node, limit, tn); }
-#if defined(WSD_AVX_DISPATCH)
-    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
-                                                             float* tn) const {
-        return r.box.hit_avx(node, limit, tn);
-    }
-#endif
     bool leaf(const Child& e) {
         closest_in<kFilter>(g, r, e.first, e.count, best, c);
         limit = to_float_up(best.limit);
         return false;
     }
-    bool open(float t) const {
-        return t <= limit * RayBoxTest::kWiden;
-    }
-    void prefetch_leaf(uint32_t first) const {
-        prefetch_leaf_data(g, first);
-    }
+    bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
 
 // The walk of an any-hit query: depth first, ended by the first hit.
 template <int kFilter>
-struct AnyHit {
+struct AnyHit : OneRayTest {
     static constexpr WalkOrder kOrder = WalkOrder::DepthFirst;
     using Child = BvhChild;
     const Impl& g;
     const RayPre& r;
     double tmax;
     Counters& c;
-    float limit;
 
-    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.box.hit(node, limit, tn); }
-#if defined(WSD_AVX_DISPATCH)
-    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
-                                                             float* tn) const {
-        return r.box.hit_avx(node, limit, tn);
-    }
-#endif
-    bool leaf(const Child& e) {
-        return any_in<kFilter>(g, r, e.first, e.count, tmax, c);
-    }
-    void prefetch_leaf(uint32_t first) const {
-        prefetch_leaf_data(g, first);
-    }
+    bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
+    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
 };
-
-#if defined(WSD_AVX_DISPATCH)
-// The walks built for AVX (walk_bvh_avx), for CPUs that have it.
-template <int kFilter>
-[[gnu::target("avx")]] void closest_walk_avx(const Impl& g, const RayPre& r, Best& best, Counters& c) {
-    ClosestHit<kFilter> q{g, r, best, c, to_float_up(best.limit)};
-    uint64_t boxes = 0;
-    walk_bvh_avx(g.nodes.data(), q, boxes);
-    c.boxes += boxes;
-}
-template <int kFilter>
-[[gnu::target("avx")]] bool any_walk_avx(const Impl& g, const RayPre& r, double tmax, Counters& c) {
-    AnyHit<kFilter> q{g, r, tmax, c, to_float_up(tmax)};
-    uint64_t boxes = 0;
-    const bool hit = walk_bvh_avx(g.nodes.data(), q, boxes);
-    c.boxes += boxes;
-    return hit;
-}
-#endif
 
 template <int kFilter>
 void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
@@ -163,12 +120,9 @@ void closest_hit(const Impl& g, const RayPre& r, Best& best, Counters& c) {
         closest_in<kFilter>(g, r, 0, static_cast<uint32_t>(g.order.size()), best, c);
         return;
     }
-#if defined(WSD_AVX_DISPATCH)
-    if (avx_walk()) return closest_walk_avx<kFilter>(g, r, best, c);
-#endif
-    ClosestHit<kFilter> q{g, r, best, c, to_float_up(best.limit)};
+    ClosestHit<kFilter> q{{&r.box, to_float_up(best.limit)}, g, r, best, c};
     uint64_t boxes = 0;  // counted in a register, added to c once
-    walk_bvh(g.nodes.data(), q, boxes);
+    walk_bvh_chosen(g.nodes.data(), q, boxes);
     c.boxes += boxes;
 }
 
@@ -183,12 +137,9 @@ bool any_hit(const Impl& g, const Ray& ray, const RayPre& r, double tmax, Counte
         if (intersect_plane(ray.o, ray.d, p, tmax, t)) return true;
     }
     if (g.nodes.empty()) return any_in<kFilter>(g, r, 0, static_cast<uint32_t>(g.order.size()), tmax, c);
-#if defined(WSD_AVX_DISPATCH)
-    if (avx_walk()) return any_walk_avx<kFilter>(g, r, tmax, c);
-#endif
-    AnyHit<kFilter> q{g, r, tmax, c, to_float_up(tmax)};
+    AnyHit<kFilter> q{{&r.box, to_float_up(tmax)}, g, r, tmax, c};
     uint64_t boxes = 0;
-    const bool hit = walk_bvh(g.nodes.data(), q, boxes);
+    const bool hit = walk_bvh_chosen(g.nodes.data(), q, boxes);
     c.boxes += boxes;
     return hit;
 }

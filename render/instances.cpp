@@ -229,49 +229,27 @@ void InstanceRay::test(uint32_t k, Best& best) {
 }
 
 // The closest-hit walk of a prototype's BVH: the top level's ClosestHit, on the local ray.
-struct InnerClosest {
+struct InnerClosest : OneRayTest {
     static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
     using Child = BvhChild;
     InstanceRay& ir;
     Best& best;
-    float limit;
 
-    int enter(const BvhWideNode& node, uint32_t, float* tn) const {
-        return ir.local.box.hit(node, limit, tn);
-    }
-#if defined(WSD_AVX_DISPATCH)
-    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
-                                                             float* tn) const {
-        return ir.local.box.hit_avx(node, limit, tn);
-    }
-#endif
     bool leaf(const Child& e) {
         for (uint32_t k = e.first; k < e.first + e.count; ++k) ir.test(k, best);
         limit = to_float_up(best.limit);
         return false;
     }
-    bool open(float t) const {
-        return t <= limit * RayBoxTest::kWiden;
-    }
+    bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
 };
 
 // The any-hit walk: depth first, ended by the first hit.
-struct InnerAny {
+struct InnerAny : OneRayTest {
     static constexpr WalkOrder kOrder = WalkOrder::DepthFirst;
     using Child = BvhChild;
     InstanceRay& ir;
     Best& best;
-    float limit;
 
-    int enter(const BvhWideNode& node, uint32_t, float* tn) const {
-        return ir.local.box.hit(node, limit, tn);
-    }
-#if defined(WSD_AVX_DISPATCH)
-    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
-                                                             float* tn) const {
-        return ir.local.box.hit_avx(node, limit, tn);
-    }
-#endif
     bool leaf(const Child& e) {
         for (uint32_t k = e.first; k < e.first + e.count; ++k) {
             ir.test(k, best);
@@ -280,25 +258,6 @@ struct InnerAny {
         return false;
     }
 };
-
-// A prototype's walk, with the node test avx_walk() chooses.
-template <class Walk>
-void walk_prototype(const BvhWideNode* nodes, Walk& walk, uint64_t& boxes) {
-    walk_bvh(nodes, walk, boxes);
-}
-#if defined(WSD_AVX_DISPATCH)
-template <class Walk>
-[[gnu::target("avx")]] void walk_prototype_avx(const BvhWideNode* nodes, Walk& walk, uint64_t& boxes) {
-    walk_bvh_avx(nodes, walk, boxes);
-}
-#endif
-template <class Walk>
-void walk_prototype_chosen(const BvhWideNode* nodes, Walk& walk, uint64_t& boxes) {
-#if defined(WSD_AVX_DISPATCH)
-    if (avx_walk()) return walk_prototype_avx(nodes, walk, boxes);
-#endif
-    walk_prototype(nodes, walk, boxes);
-}
 
 }  // namespace
 
@@ -313,11 +272,11 @@ bool test_instance(const Impl& g, const InstancePrim& q, const RayPre& r, double
     Best best{limit};
     uint64_t boxes = 0;
     if (c.any_hit) {
-        InnerAny walk{ir, best, to_float_up(limit)};
-        walk_prototype_chosen(p.geometry->nodes.data(), walk, boxes);
+        InnerAny walk{{&ir.local.box, to_float_up(limit)}, ir, best};
+        walk_bvh_chosen(p.geometry->nodes.data(), walk, boxes);
     } else {
-        InnerClosest walk{ir, best, to_float_up(limit)};
-        walk_prototype_chosen(p.geometry->nodes.data(), walk, boxes);
+        InnerClosest walk{{&ir.local.box, to_float_up(limit)}, ir, best};
+        walk_bvh_chosen(p.geometry->nodes.data(), walk, boxes);
     }
     c.boxes += boxes;
     if (!best.hit) return false;

@@ -145,4 +145,34 @@ template <WalkOrder kOrder, class Child>
 #include "render/walk_bvh.inc"
 #endif
 
+// The node test of a query that walks for one ray: its RayBoxTest within `limit` (a query
+// derives from it and keeps `limit` up to date), as enter and enter_avx.
+struct OneRayTest {
+    const RayBoxTest* box;
+    float limit;
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return box->hit(node, limit, tn); }
+#if defined(WSD_AVX_DISPATCH)
+    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
+                                                             float* tn) const {
+        return box->hit_avx(node, limit, tn);
+    }
+#endif
+};
+
+#if defined(WSD_AVX_DISPATCH)
+template <class Q>
+[[gnu::target("avx")]] bool walk_bvh_avx_call(const BvhWideNode* nodes, Q& q, uint64_t& boxes) {
+    return walk_bvh_avx(nodes, q, boxes);
+}
+#endif
+
+// walk_bvh, or walk_bvh_avx where avx_walk() says so: for queries with enter_avx.
+template <class Q>
+[[gnu::always_inline]] inline bool walk_bvh_chosen(const BvhWideNode* nodes, Q& q, uint64_t& boxes) {
+#if defined(WSD_AVX_DISPATCH)
+    if (avx_walk()) return walk_bvh_avx_call(nodes, q, boxes);
+#endif
+    return walk_bvh(nodes, q, boxes);
+}
+
 }  // namespace wsd::render

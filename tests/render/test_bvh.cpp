@@ -16,18 +16,22 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Asserts that two closest hits are the same, bit for bit.
+void require_same_hit(const std::optional<HitRecord>& ha, const std::optional<HitRecord>& hb) {
+    REQUIRE(ha.has_value() == hb.has_value());
+    if (!ha) return;
+    REQUIRE(ha->prim == hb->prim);
+    REQUIRE(ha->t == hb->t);
+    REQUIRE(ha->b1 == hb->b1);
+    REQUIRE(ha->b2 == hb->b2);
+}
+
 // Asserts that two geometries answer a ray identically (closest hit and occlusion).
 void require_same(const Geometry& a, const Geometry& b, const Ray& ray, double tmax, RayFilter filter) {
     RayStats stats;
     auto ha = a.intersect(ray, tmax, stats, filter);
     auto hb = b.intersect(ray, tmax, stats, filter);
-    REQUIRE(ha.has_value() == hb.has_value());
-    if (ha) {
-        REQUIRE(ha->prim == hb->prim);
-        REQUIRE(ha->t == hb->t);
-        REQUIRE(ha->b1 == hb->b1);
-        REQUIRE(ha->b2 == hb->b2);
-    }
+    require_same_hit(ha, hb);
     bool oa = a.occluded(ray, tmax, stats, filter), ob = b.occluded(ray, tmax, stats, filter);
     REQUIRE(oa == ob);
     REQUIRE(oa == ha.has_value());
@@ -78,13 +82,7 @@ TEST_CASE("R26 the AVX node test chosen at run time answers as the baseline one,
             set_avx_walk(false);
             const auto hb = g->intersect(r, tmax, sb, filter);
             const bool ob = g->occluded(r, tmax, sb, filter);
-            REQUIRE(ha.has_value() == hb.has_value());
-            if (ha) {
-                REQUIRE(ha->prim == hb->prim);
-                REQUIRE(ha->t == hb->t);
-                REQUIRE(ha->b1 == hb->b1);
-                REQUIRE(ha->b2 == hb->b2);
-            }
+            require_same_hit(ha, hb);
             REQUIRE(oa == ob);
             REQUIRE(sa.box_tests == sb.box_tests);  // the same nodes, the same lanes entered
             REQUIRE(sa.triangle_tests == sb.triangle_tests);
