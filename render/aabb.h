@@ -200,10 +200,10 @@ struct RayBoxTest {
 #endif
 };
 
-// True when one ray's closest-hit and any-hit walks (Geometry::intersect, occluded) test a node's
-// children with RayBoxTest::hit_avx: on CPUs with AVX, detected at start-up, unless
-// set_avx_walk(false) said otherwise (render/cpu_features.cpp). Packets, shadow shafts and
-// instances' inner walks keep the baseline test.
+// True when the walks for one ray (Geometry::intersect and occluded, and within instances) test
+// a node's children with RayBoxTest::hit_avx (render/traverse.h, walk_bvh_chosen): on CPUs with
+// AVX, detected at start-up, unless set_avx_walk(false) said otherwise (render/cpu_features.cpp).
+// Packets and shadow shafts keep the baseline test.
 #if defined(WSD_AVX_DISPATCH)
 extern bool g_avx_walk;
 inline bool avx_walk() {

@@ -160,6 +160,7 @@ struct OneRayTest {
 };
 
 #if defined(WSD_AVX_DISPATCH)
+// A function built for AVX, which walk_bvh_avx (always inline) is inlined into.
 template <class Q>
 [[gnu::target("avx")]] bool walk_bvh_avx_call(const BvhWideNode* nodes, Q& q, uint64_t& boxes) {
     return walk_bvh_avx(nodes, q, boxes);
