@@ -202,6 +202,37 @@ TEST_CASE("the collapse fills wide nodes: few hold only two children") {
     CHECK(static_cast<double>(two) <= 0.05 * static_cast<double>(nodes.size()));
 }
 
+TEST_CASE("the collapse copes with boxes as large as floats go") {
+    // Extents past the float range, flat boxes among them: the collapse's areas must not turn
+    // into NaN and leave a leaf to be split as if it were inner.
+    constexpr float kBig = std::numeric_limits<float>::max();
+    std::vector<Bounds3f> boxes;
+    for (int i = 0; i < 40; ++i) {
+        const float s = static_cast<float>(i % 5);
+        Bounds3f b;
+        b.extend(Vec3f{-kBig, s, i % 2 == 0 ? 0.0f : -kBig});
+        b.extend(Vec3f{kBig, s + (i % 3 == 0 ? 0.0f : 1.0f), i % 2 == 0 ? 0.0f : kBig});
+        boxes.push_back(b);
+    }
+    BvhOptions options;
+    options.max_leaf = 1;
+    const auto nodes = to_bvh_wide(build_bvh(boxes, options).nodes, [](uint32_t, uint32_t) { return true; });
+    std::vector<int> covered(boxes.size(), 0);
+    size_t inner_lanes = 0;
+    for (const BvhWideNode& node : nodes)
+        for (int i = 0; i < kBvhWidth; ++i) {
+            if ((node.child_mask() >> i & 1) == 0) continue;
+            if (node.count(i) == 0) {
+                ++inner_lanes;
+                REQUIRE(node.first(i) < nodes.size());
+                continue;
+            }
+            for (uint32_t k = node.first(i); k < node.first(i) + node.count(i); ++k) ++covered.at(k);
+        }
+    CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
+    CHECK(inner_lanes == nodes.size() - 1);
+}
+
 TEST_CASE("a leaf that ends the walk ends it, in every order") {
     std::mt19937_64 gen(7);
     const Boxes b = random_tree(gen, 500, 2);
