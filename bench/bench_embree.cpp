@@ -55,6 +55,7 @@
 #include <vector>
 
 #include "bench/same_rays.h"
+#include "render/cpu_features.h"
 #include "render/geometry.h"
 #include "render/geometry_impl.h"
 #include "render/math.h"

@@ -7,7 +7,8 @@
 #include <limits>
 #include <utility>
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-// The AVX node test is compiled into every x86-64 build and chosen at run time (avx_walk()).
+// The AVX node test is compiled into every x86-64 build and chosen at run time
+// (render/cpu_features.h).
 #define WSD_AVX_DISPATCH 1
 #include <immintrin.h>
 #elif defined(__SSE2__)
@@ -141,10 +142,10 @@ struct RayBoxTest {
     // Bit i of the result is set when the ray may meet child i within (0, t_limit]; t_entry[i]
     // gets its entry distance. NaN slabs (0·∞) never decide.
     int hit(const BvhWideNode& node, float t_limit, float* t_entry) const {
-        const float* base = &node.lo[0][0];
 #if defined(__AVX__)
         return hit_avx(node, t_limit, t_entry);  // built for AVX (WSD_ARCH)
 #elif defined(__SSE2__)
+        const float* base = &node.lo[0][0];
         int mask = 0;
         for (int g = 0; g < kBvhGroups; ++g) {
             __m128 tn = _mm_setzero_ps(), tf = _mm_set1_ps(t_limit);
@@ -161,6 +162,7 @@ struct RayBoxTest {
         }
         return mask;
 #else
+        const float* base = &node.lo[0][0];
         int mask = 0;
         for (int i = 0; i < kBvhWidth; ++i) {
             float tn = 0, tf = t_limit;
@@ -178,8 +180,9 @@ struct RayBoxTest {
     }
 
 #if defined(WSD_AVX_DISPATCH)
-    // hit's operations on all eight lanes at once, for CPUs with AVX (avx_walk()): a function of
-    // its own, so that code for every x86-64 holds it; only functions built for AVX call it.
+    // hit's operations on all eight lanes at once, for CPUs with AVX (avx_walk() in
+    // render/cpu_features.h): a function of its own, so that code for every x86-64 holds it;
+    // only functions built for AVX call it.
     // Bit for bit the same results (the same IEEE operations lane by lane, no contraction).
     [[gnu::target("avx"), gnu::always_inline]] inline int hit_avx(const BvhWideNode& node, float t_limit,
                                                                   float* t_entry) const {
@@ -199,24 +202,6 @@ struct RayBoxTest {
     }
 #endif
 };
-
-// True when the walks for one ray (Geometry::intersect and occluded, and within instances) test
-// a node's children with RayBoxTest::hit_avx (render/traverse.h, walk_bvh_chosen): on CPUs with
-// AVX, detected at start-up, unless set_avx_walk(false) said otherwise (render/cpu_features.cpp).
-// Packets and shadow shafts keep the baseline test.
-#if defined(WSD_AVX_DISPATCH)
-extern bool g_avx_walk;
-inline bool avx_walk() {
-    return g_avx_walk;
-}
-#else
-inline bool avx_walk() {
-    return false;
-}
-#endif
-// Chooses the baseline (false) or the AVX node test (true, only where the CPU has AVX); returns
-// whether AVX is used now. For comparisons (tests, benchmarks); the results are the same.
-bool set_avx_walk(bool on);
 
 // Whether the segment a + t·d, t in [0, 1], meets the closed box [lo, hi]: the slab test in double
 // precision, for the handful of boxes of a conservative cull (Scene::may_cross_transmissive),

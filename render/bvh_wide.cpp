@@ -35,13 +35,13 @@ constexpr float kPrimCost = 0.8f;
 // j = 1 .. kBvhWidth): one lane (a leaf or a wide node of its own), or its children's subtrees
 // spread over j lanes. The optimal collapse by dynamic programming, after Ylitie, Karras and
 // Laine, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" (2017).
-struct Ranges {
+struct Collapse {
     static constexpr uint32_t kLeafBit = 1u << 31;
     std::vector<uint32_t> size_;
     std::vector<std::array<float, kBvhWidth>> cost_;
     // Filled bottom up: the subtrees below depth kSplitDepth on `threads` threads, then the top.
     static constexpr int kSplitDepth = 6;
-    Ranges(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
+    Collapse(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
         : size_(nodes.size()), cost_(nodes.size()) {
         std::vector<uint32_t> roots;
         below(nodes, 0, kSplitDepth, roots);
@@ -121,7 +121,7 @@ struct Ranges {
 
 // The children of the wide node for inner node `n`: its two children's subtrees spread over at
 // most kBvhWidth lanes at the least cost. Returns their number.
-int wide_children(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, uint32_t* kids) {
+int wide_children(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, uint32_t* kids) {
     int k = 1;
     r.spread(nodes, n, kBvhWidth, &k);
     int count = 0;
@@ -131,7 +131,7 @@ int wide_children(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n
 }
 
 // The number of wide nodes emit_wide writes for inner node `n`.
-size_t count_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n) {
+size_t count_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
     size_t total = 1;
@@ -164,7 +164,7 @@ void set_lane(BvhWideNode& node, int i, const BvhNode& child) {
 // out[at + 1] on, in lane order, each placed by place(kid, index) which returns the index after
 // that subtree's last node. Returns the index after the last.
 template <class Place>
-uint32_t write_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+uint32_t write_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                     uint32_t at, Place&& place) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
@@ -173,7 +173,7 @@ uint32_t write_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t
     for (int i = 0; i < count; ++i) {
         set_lane(node, i, nodes[kids[i]]);
         if (r.leaf(kids[i])) {
-            node.set_child(i, Ranges::first(nodes, kids[i]), r.size(kids[i]));
+            node.set_child(i, Collapse::first(nodes, kids[i]), r.size(kids[i]));
         } else {
             node.set_child(i, next, 0);
             next = place(kids[i], next);
@@ -185,7 +185,7 @@ uint32_t write_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t
 
 // Writes the wide node for inner node `n` at out[at] and, depth first, the nodes below it;
 // returns the index after the last.
-uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                    uint32_t at) {
     return write_wide(nodes, r, n, out, at,
                       [&](uint32_t kid, uint32_t next) { return emit_wide(nodes, r, kid, out, next); });
@@ -199,7 +199,7 @@ struct WideJob {
 // The subtrees below the wide node for inner node `n` and `levels` more levels of its inner
 // children, in the order place_wide meets them, into `roots`. Returns the number of wide nodes in
 // those levels.
-uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, int levels,
+uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, int levels,
                         std::vector<uint32_t>& roots) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
@@ -217,7 +217,7 @@ uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Ranges& r, uint
 // Writes the wide node for inner node `n` at out[at]; its inner children's subtrees, placed where
 // emit_wide puts them, are written here down to `levels` more levels and left to `jobs` below.
 // The subtree of the k-th job holds sizes[k] wide nodes. Returns the index after the last.
-uint32_t place_wide(const std::vector<BvhNode>& nodes, const Ranges& r, uint32_t n, BvhWideNode* out,
+uint32_t place_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                     uint32_t at, int levels, const std::vector<uint32_t>& sizes, std::vector<WideJob>& jobs) {
     return write_wide(nodes, r, n, out, at, [&](uint32_t kid, uint32_t next) {
         if (levels > 0) return place_wide(nodes, r, kid, out, next, levels - 1, sizes, jobs);
@@ -242,7 +242,7 @@ std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const Wi
     // Counted first: the exact size, without a shrinking copy. The top two levels are written
     // here; the subtrees below them are counted, then written each to its own depth-first place,
     // in parallel: the same nodes as one depth-first walk, whatever the thread count.
-    const Ranges r(nodes, mergeable, threads);
+    const Collapse r(nodes, mergeable, threads);
     std::vector<uint32_t> roots;
     size_t total = subtrees_below(nodes, r, 0, 1, roots);
     std::vector<uint32_t> sizes(roots.size());

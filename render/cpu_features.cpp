@@ -1,5 +1,4 @@
-// The instruction sets the BVH walks choose at run time (render/aabb.h: avx_walk).
-#include "render/aabb.h"
+#include "render/cpu_features.h"
 
 namespace wsd::render {
 

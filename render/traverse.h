@@ -14,6 +14,7 @@
 
 #include "render/aabb.h"
 #include "render/bvh.h"
+#include "render/cpu_features.h"
 
 namespace wsd::render {
 

@@ -7,6 +7,7 @@
 
 #include "geometry_test_util.h"
 #include "render/bvh.h"
+#include "render/cpu_features.h"
 #include "render/geometry_impl.h"
 
 using namespace wsd::render;
@@ -70,7 +71,8 @@ TEST_CASE("R26 the AVX node test chosen at run time answers as the baseline one,
         const SceneSpec spec = random_scene(rng, rng.integer(1, 400), size);
         auto g = build_ok(spec, true);
         REQUIRE(g);
-        INFO("scene " << s << " size " << size << ", AVX available " << set_avx_walk(true));
+        const bool avx = set_avx_walk(true);
+        INFO("scene " << s << " size " << size << ", AVX available " << avx);
         for (int i = 0; i < rays; ++i) {
             const Ray r = random_ray(rng, size);
             const double tmax = rng.uniform() < 0.5 ? kInf : rng.uniform(0, 2);

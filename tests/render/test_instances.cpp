@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "render/aabb.h"
+#include "render/cpu_features.h"
 #include "render/effects.h"
 #include "render/geometry.h"
 #include "tests/render/scene_builders.h"

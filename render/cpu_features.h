@@ -1,0 +1,26 @@
+// The instruction sets the BVH walks choose at run time.
+#pragma once
+
+#include "render/aabb.h"  // WSD_AVX_DISPATCH
+
+namespace wsd::render {
+
+// True when the walks for one ray (Geometry::intersect and occluded, and within instances) test
+// a node's children with RayBoxTest::hit_avx (render/traverse.h, walk_bvh_chosen): on CPUs with
+// AVX, detected at start-up, unless set_avx_walk(false) said otherwise (render/cpu_features.cpp).
+// Packets and shadow shafts keep the baseline test.
+#if defined(WSD_AVX_DISPATCH)
+extern bool g_avx_walk;
+inline bool avx_walk() {
+    return g_avx_walk;
+}
+#else
+inline bool avx_walk() {
+    return false;
+}
+#endif
+// Chooses the baseline (false) or the AVX node test (true, only where the CPU has AVX); returns
+// whether AVX is used now. For comparisons (tests, benchmarks); the results are the same.
+bool set_avx_walk(bool on);
+
+}  // namespace wsd::render
