@@ -204,7 +204,10 @@ std::vector<Element> elements(uint32_t file, std::string_view text, std::vector<
     std::vector<Span> comments;
     lexer.record_comments(&comments);
     std::vector<Element> tokens;
-    std::vector<bool> open_is_vector;
+    // The open brackets. Inside a block the parser skipped (an unknown property's `{ ... }`),
+    // brackets need not balance: a '}' closes whatever its block left open.
+    enum class Open : uint8_t { brace, bracket, vector };
+    std::vector<Open> open;
     size_t m = 0;
     for (;;) {
         const Token t = lexer.next();
@@ -218,21 +221,26 @@ std::vector<Element> elements(uint32_t file, std::string_view text, std::vector<
         switch (t.kind) {
             case TokenKind::LParen:
             case TokenKind::LBracket:
+                open.push_back(Open::bracket);
+                break;
             case TokenKind::LBrace:
-                open_is_vector.push_back(false);
+                open.push_back(Open::brace);
                 break;
             case TokenKind::Less:
-                if (e.role & vector_open) open_is_vector.push_back(true);
+                if (e.role & vector_open) open.push_back(Open::vector);
                 break;
             case TokenKind::RParen:
             case TokenKind::RBracket:
+                if (!open.empty() && open.back() != Open::brace) open.pop_back();
+                break;
             case TokenKind::RBrace:
-                if (!open_is_vector.empty()) open_is_vector.pop_back();
+                while (!open.empty() && open.back() != Open::brace) open.pop_back();
+                if (!open.empty()) open.pop_back();
                 break;
             case TokenKind::Greater:
             case TokenKind::GreaterEq:
-                if (!open_is_vector.empty() && open_is_vector.back()) {
-                    open_is_vector.pop_back();
+                if (!open.empty() && open.back() == Open::vector) {
+                    open.pop_back();
                     e.role |= vector_close;
                     e.kind = TokenKind::Greater;
                     e.end = e.begin + 1;
@@ -373,6 +381,9 @@ std::string Layout::run() {
                 newline = gap > 0 || p.line_comment;
                 indent = content_indent();
             } else {
+                // Brackets left open in a block the parser skipped close with the block.
+                if (e.is(TokenKind::RBrace))
+                    while (!frames.empty() && !frames.back().brace) frames.pop_back();
                 const bool forced = p.line_comment || ((e.role & item_start) && multiline_body()) ||
                                     (p.is(TokenKind::LBrace) && multiline_body()) ||
                                     (e.is(TokenKind::RBrace) && multiline_body());
@@ -418,8 +429,8 @@ std::string Layout::run() {
             f.opener_indent = line_indent;
             f.indent = line_indent + indent_width;
             frames.push_back(f);
-        } else if (e.closes() && !frames.empty()) {
-            frames.pop_back();
+        } else if (e.closes() && !frames.empty() && (e.is(TokenKind::RBrace) || !frames.back().brace)) {
+            frames.pop_back();  // a stray ')' or ']' in a skipped block closes nothing
         }
     }
     if (!out.empty()) out += '\n';

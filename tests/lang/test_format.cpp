@@ -280,6 +280,19 @@ TEST_CASE("fmt: line endings, byte-order mark, fragments", "[format]") {
     CHECK(*fragment.text == "let m = material { color <1, 0, 0> }\n");
 }
 
+TEST_CASE("fmt: a block the parser skips may leave brackets open or close too many", "[format]") {
+    // An unknown property with a block after it (POV-Ray's `pigment { ... }`) parses as one
+    // placeholder, whatever its tokens; the checker reports the property later. Its '}' closes the
+    // brackets it left open, and a stray ')' or ']' in it closes nothing outside.
+    CHECK(fmt("sphere { m { a[o <1, 1, 1> } }") == "sphere { m { a [o < 1, 1, 1 > } }\n");
+    CHECK(fmt("sphere { m { a(o ) ] ) } }") == "sphere { m { a (o)]) } }\n");
+    for (const char* input :
+         {"sphere { m { a[o <1, 1, 1> } }", "sphere { m { a[o\n <1, 1, 1>\n } }",
+          "sphere { m { (((\n } radius 1\n center <0, 0, 0> }", "sphere { m { ] ) ]\n x 1 }\n}",
+          "sphere {\n  m { [ {\n ( } }\n  radius 1\n}\nsphere { radius 2 }"})
+        check_promises(input, input);
+}
+
 TEST_CASE("fmt refuses a file with syntax errors with the parser's diagnostics", "[format]") {
     const std::string text = "sphere { radius 1\nlet = 2\n";
     const Formatted f = format_text(text);
