@@ -6,10 +6,9 @@
 #include <cstdint>
 #include <limits>
 #include <utility>
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-// The AVX node test is compiled into every x86-64 build and chosen at run time
-// (render/cpu_features.h).
-#define WSD_AVX_DISPATCH 1
+
+#include "render/cpu_features.h"  // WSD_AVX_DISPATCH
+#if defined(WSD_AVX_DISPATCH)
 #include <immintrin.h>
 #elif defined(__SSE2__)
 #include <emmintrin.h>
@@ -142,7 +141,7 @@ struct RayBoxTest {
     // Bit i of the result is set when the ray may meet child i within (0, t_limit]; t_entry[i]
     // gets its entry distance. NaN slabs (0·∞) never decide.
     int hit(const BvhWideNode& node, float t_limit, float* t_entry) const {
-#if defined(__AVX__)
+#if defined(__AVX__) && defined(WSD_AVX_DISPATCH)
         return hit_avx(node, t_limit, t_entry);  // built for AVX (WSD_ARCH)
 #elif defined(__SSE2__)
         const float* base = &node.lo[0][0];

@@ -1,7 +1,11 @@
 // The instruction sets the BVH walks choose at run time.
 #pragma once
 
-#include "render/aabb.h"  // WSD_AVX_DISPATCH
+// Where the AVX node test (RayBoxTest::hit_avx in render/aabb.h) is compiled into every build,
+// to be chosen at run time: x86-64 with GCC or clang.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define WSD_AVX_DISPATCH 1
+#endif
 
 namespace wsd::render {
 

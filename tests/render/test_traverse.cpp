@@ -139,33 +139,45 @@ TEST_CASE("every walk order visits exactly the leaves a brute-force slab test se
     }
 }
 
+namespace {
+
+// Checks the lanes of a wide tree over `primitives` primitives: empty lanes hold no child and an
+// empty box, every node but the root is one lane's child, and the leaves cover each primitive
+// once. Returns the largest leaf.
+uint32_t check_lanes(const std::vector<BvhWideNode>& nodes, size_t primitives) {
+    std::vector<int> covered(primitives, 0);
+    uint32_t largest = 0;
+    size_t inner_lanes = 0;
+    for (const BvhWideNode& node : nodes)
+        for (int i = 0; i < kBvhWidth; ++i) {
+            if ((node.child_mask() >> i & 1) == 0) {
+                CHECK(node.child[i] == 0);
+                CHECK_FALSE(node.lo[0][i] <= node.hi[0][i]);
+                continue;
+            }
+            if (node.count(i) == 0) {
+                ++inner_lanes;
+                REQUIRE(node.first(i) > 0);
+                REQUIRE(node.first(i) < nodes.size());
+                continue;
+            }
+            largest = std::max(largest, node.count(i));
+            for (uint32_t k = node.first(i); k < node.first(i) + node.count(i); ++k) ++covered.at(k);
+        }
+    CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
+    CHECK(inner_lanes == nodes.size() - 1);
+    return largest;
+}
+
+}  // namespace
+
 TEST_CASE("the wide tree's leaves cover every primitive once; small subtrees merge only when allowed") {
     std::mt19937_64 gen(5);
     for (int n : {1, 2, 3, 9, 100, 2000}) {
         for (bool merge : {false, true}) {
             INFO(n << " boxes, merge " << merge);
             const Boxes b = random_tree(gen, n, 1, merge);
-            std::vector<int> covered(static_cast<size_t>(n), 0);
-            uint32_t largest = 0;
-            size_t inner_lanes = 0;
-            for (const BvhWideNode& node : b.nodes)
-                for (int i = 0; i < kBvhWidth; ++i) {
-                    if ((node.child_mask() >> i & 1) == 0) {
-                        CHECK(node.child[i] == 0);
-                        CHECK_FALSE(node.lo[0][i] <= node.hi[0][i]);
-                        continue;
-                    }
-                    if (node.count(i) == 0) {
-                        ++inner_lanes;
-                        REQUIRE(node.first(i) > 0);
-                        REQUIRE(node.first(i) < b.nodes.size());
-                        continue;
-                    }
-                    largest = std::max(largest, node.count(i));
-                    for (uint32_t k = node.first(i); k < node.first(i) + node.count(i); ++k) ++covered.at(k);
-                }
-            CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
-            CHECK(inner_lanes == b.nodes.size() - 1);  // every node but the root is one lane's child
+            const uint32_t largest = check_lanes(b.nodes, static_cast<size_t>(n));
             // Built with one primitive a leaf: only a merge makes larger ones, and never past
             // kWideMergeLeaf (the collapse merges where that costs less: among many small boxes).
             if (merge && n >= 100)
@@ -217,20 +229,7 @@ TEST_CASE("the collapse copes with boxes as large as floats go") {
     BvhOptions options;
     options.max_leaf = 1;
     const auto nodes = to_bvh_wide(build_bvh(boxes, options).nodes, [](uint32_t, uint32_t) { return true; });
-    std::vector<int> covered(boxes.size(), 0);
-    size_t inner_lanes = 0;
-    for (const BvhWideNode& node : nodes)
-        for (int i = 0; i < kBvhWidth; ++i) {
-            if ((node.child_mask() >> i & 1) == 0) continue;
-            if (node.count(i) == 0) {
-                ++inner_lanes;
-                REQUIRE(node.first(i) < nodes.size());
-                continue;
-            }
-            for (uint32_t k = node.first(i); k < node.first(i) + node.count(i); ++k) ++covered.at(k);
-        }
-    CHECK(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }));
-    CHECK(inner_lanes == nodes.size() - 1);
+    check_lanes(nodes, boxes.size());
 }
 
 TEST_CASE("a leaf that ends the walk ends it, in every order") {
