@@ -10,9 +10,11 @@
 namespace wsd::render {
 
 // True when the walks for one ray (Geometry::intersect and occluded, and within instances) test
-// a node's children with RayBoxTest::hit_avx (render/traverse.h, walk_bvh_chosen): on CPUs with
-// AVX, detected at start-up, unless set_avx_walk(false) said otherwise (render/cpu_features.cpp).
-// Packets and shadow shafts keep the baseline test.
+// a node's children with RayBoxTest::hit_avx (render/traverse.h, walk_bvh_chosen) and a mesh's
+// leaves four triangles at a time (render/prim_test.h), and packets walk with AVX too
+// (render/geometry_packet.cpp): on CPUs with AVX, detected at start-up, unless
+// set_avx_walk(false) said otherwise (render/cpu_features.cpp). Shadow shafts keep the baseline
+// tests.
 #if defined(WSD_AVX_DISPATCH)
 extern bool g_avx_walk;
 inline bool avx_walk() {
@@ -23,7 +25,7 @@ inline bool avx_walk() {
     return false;
 }
 #endif
-// Chooses the baseline (false) or the AVX node test (true, only where the CPU has AVX); returns
+// Chooses the baseline (false) or the AVX tests (true, only where the CPU has AVX); returns
 // whether AVX is used now. For comparisons (tests, benchmarks); the results are the same.
 bool set_avx_walk(bool on);
 

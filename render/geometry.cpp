@@ -29,7 +29,7 @@ template <int kFilter>
     prefetch_leaf_vertices(g, first, count);
 #if defined(__SSE2__)
     if (kFilter != 2 && g.tris_in_order) {
-        test_leaf_triangles(
+        test_leaf_triangles<EdgesPair>(
             g, r, first, count, c, [&] { return best.limit; },
             [&](uint32_t k, double t, double b1, double b2) {
                 best.offer(t, g.tris[k].prim, k, b1, b2);
@@ -55,6 +55,22 @@ template <int kFilter>
     }
 }
 
+#if defined(WSD_AVX_DISPATCH)
+// closest_in for the walk built for AVX, on a mesh's triangles (kFilter != 2, tris_in_order):
+// four at a time.
+[[gnu::noinline, gnu::target("avx"), gnu::flatten]] void closest_in_avx(const Impl& g, const RayPre& r,
+                                                                        uint32_t first, uint32_t count,
+                                                                        Best& best, Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
+    test_leaf_triangles<EdgesQuad>(
+        g, r, first, count, c, [&] { return best.limit; },
+        [&](uint32_t k, double t, double b1, double b2) {
+            best.offer(t, g.tris[k].prim, k, b1, b2);
+            return false;
+        });
+}
+#endif
+
 // True when one of the primitives of order[first, first + count) that pass the filter is hit.
 template <int kFilter>
 [[gnu::noinline]] bool any_in(const Impl& g, const RayPre& r, uint32_t first, uint32_t count, double tmax,
@@ -62,7 +78,7 @@ template <int kFilter>
     prefetch_leaf_vertices(g, first, count);
 #if defined(__SSE2__)
     if (kFilter != 2 && g.tris_in_order)
-        return test_leaf_triangles(
+        return test_leaf_triangles<EdgesPair>(
             g, r, first, count, c, [tmax] { return tmax; },
             [](uint32_t, double, double, double) { return true; });
 #endif
@@ -80,6 +96,18 @@ template <int kFilter>
     return false;
 }
 
+#if defined(WSD_AVX_DISPATCH)
+// any_in for the walk built for AVX, as closest_in_avx.
+[[gnu::noinline, gnu::target("avx"), gnu::flatten]] bool any_in_avx(const Impl& g, const RayPre& r,
+                                                                    uint32_t first, uint32_t count,
+                                                                    double tmax, Counters& c) {
+    prefetch_leaf_vertices(g, first, count);
+    return test_leaf_triangles<EdgesQuad>(
+        g, r, first, count, c, [tmax] { return tmax; },
+        [](uint32_t, double, double, double) { return true; });
+}
+#endif
+
 // The BVH walk of a closest-hit query: nearest child first, waiting children pruned by the
 // running hit's distance (in floats, rounded up).
 template <int kFilter>
@@ -96,8 +124,20 @@ struct ClosestHit : OneRayTest {
         limit = to_float_up(best.limit);
         return false;
     }
-    bool open(float t) const { return t <= limit * RayBoxTest::kWiden; }
-    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
+#if defined(WSD_AVX_DISPATCH)
+    [[gnu::target("avx")]] bool leaf_avx(const Child& e) {
+        if (kFilter == 2 || !g.tris_in_order) return leaf(e);
+        closest_in_avx(g, r, e.first, e.count, best, c);
+        limit = to_float_up(best.limit);
+        return false;
+    }
+#endif
+    bool open(float t) const {
+        return t <= limit * RayBoxTest::kWiden;
+    }
+    void prefetch_leaf(uint32_t first) const {
+        prefetch_leaf_data(g, first);
+    }
 };
 
 // The walk of an any-hit query: depth first, ended by the first hit.
@@ -111,7 +151,15 @@ struct AnyHit : OneRayTest {
     Counters& c;
 
     bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
-    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
+#if defined(WSD_AVX_DISPATCH)
+    [[gnu::target("avx")]] bool leaf_avx(const Child& e) {
+        if (kFilter == 2 || !g.tris_in_order) return leaf(e);
+        return any_in_avx(g, r, e.first, e.count, tmax, c);
+    }
+#endif
+    void prefetch_leaf(uint32_t first) const {
+        prefetch_leaf_data(g, first);
+    }
 };
 
 template <int kFilter>

@@ -187,40 +187,35 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
 
 #if defined(__SSE2__)
 // The triangles tris[first, first + count) of a tree whose leaves hold triangles in order
-// (Impl::tris_in_order) against one ray: two at a time up to their edge functions (EdgesPair,
-// the scalar test's operations lane by lane), then each whose line meets the ray as
-// test_triangle goes on, in order, against limit() as it is then. hit(k, t, b1, b2) takes a hit
-// of tris[k] and returns true to stop; so does this function then. Counted as test_triangle.
-template <class Limit, class Hit>
+// (Impl::tris_in_order) against one ray: Group::kWidth at a time up to their edge functions
+// (EdgesPair, or EdgesQuad in functions built for AVX: the scalar test's operations lane by
+// lane), then each whose line meets the ray as test_triangle goes on, in order, against limit()
+// as it is then. hit(k, t, b1, b2) takes a hit of tris[k] and returns true to stop; so does this
+// function then. Counted as test_triangle: the triangles of each group.
+template <class Group, class Limit, class Hit>
 [[gnu::always_inline]] inline bool test_leaf_triangles(const Impl& g, const RayPre& r, uint32_t first,
                                                        uint32_t count, Counters& c, Limit limit, Hit hit) {
-    const __m128d ox = _mm_set1_pd(r.ox), oy = _mm_set1_pd(r.oy), oz = _mm_set1_pd(r.oz);
-    const __m128d sx = _mm_set1_pd(r.sx), sy = _mm_set1_pd(r.sy);
-    for (uint32_t k = first; k < first + count; k += 2) {
-        // A lone last triangle fills both lanes; only lane 0 counts.
-        const uint32_t k1 = k + 1 < first + count ? k + 1 : k;
-        const uint32_t lanes = k1 != k ? 3u : 1u;
-        c.tri_tests += k1 != k ? 2u : 1u;
-        const TriPrim& t0 = g.tris[k];
-        const TriPrim& t1 = g.tris[k1];
-        __m128d vx[3], vy[3], vz[3];
-        for (int i = 0; i < 3; ++i) {
-            const float* a = glm::value_ptr(g.verts[t0.v[i]]);
-            const float* b = glm::value_ptr(g.verts[t1.v[i]]);
-            vx[i] = _mm_set_pd(static_cast<double>(b[r.kx]), static_cast<double>(a[r.kx]));
-            vy[i] = _mm_set_pd(static_cast<double>(b[r.ky]), static_cast<double>(a[r.ky]));
-            vz[i] = _mm_set_pd(static_cast<double>(b[r.kz]), static_cast<double>(a[r.kz]));
+    constexpr uint32_t kWidth = Group::kWidth;
+    const uint32_t end = first + count;
+    for (uint32_t k = first; k < end; k += kWidth) {
+        // Past the last triangle, lanes repeat it; only the first n count.
+        const uint32_t n = std::min(end - k, kWidth);
+        c.tri_tests += n;
+        const float* v[3][kWidth];
+        for (uint32_t l = 0; l < kWidth; ++l) {
+            const TriPrim& tri = g.tris[k + std::min(l, n - 1)];
+            for (int i = 0; i < 3; ++i) v[i][l] = glm::value_ptr(g.verts[tri.v[i]]);
         }
-        EdgesPair e;
-        e.compute(vx, vy, vz, ox, oy, oz, sx, sy);
-        for (uint32_t l = lanes & ~e.ruled_out(); l != 0; l &= l - 1) {
+        Group e;
+        e.compute(v, r);
+        for (uint32_t l = ((1u << n) - 1) & ~e.ruled_out(); l != 0; l &= l - 1) {
             const int lane = std::countr_zero(l);
             TriangleEdges q;
             e.lane(lane, q);
             double t, b1, b2;
             if (finish_edges(r, q) && triangle_hit(q, limit(), t, b1, b2)) {
                 ++c.tri_hits;
-                if (hit(lane == 0 ? k : k1, t, b1, b2)) return true;
+                if (hit(k + static_cast<uint32_t>(lane), t, b1, b2)) return true;
             }
         }
     }

@@ -116,6 +116,17 @@ template <WalkOrder kOrder, class Child>
     }
 }
 
+#if defined(WSD_AVX_DISPATCH)
+// A leaf in the walk built for AVX: the query's leaf_avx where it has one, else its leaf.
+template <class Q, class Child>
+[[gnu::target("avx"), gnu::always_inline]] inline bool leaf_avx(Q& q, const Child& c) {
+    if constexpr (requires { q.leaf_avx(c); })
+        return q.leaf_avx(c);
+    else
+        return q.leaf(c);
+}
+#endif
+
 }  // namespace detail
 
 // Walks the non-empty tree `nodes` (node 0 holds the root's children) for one query and returns
@@ -134,15 +145,19 @@ template <WalkOrder kOrder, class Child>
 //
 // walk_bvh_avx is the same walk built for AVX (x86-64 only; call it where avx_walk() is true):
 // the query provides enter_avx, with enter's meaning, [[gnu::target("avx"), gnu::always_inline]]
-// (RayBoxTest::hit_avx). Both are written once, in render/walk_bvh.inc.
+// (RayBoxTest::hit_avx), and may provide leaf_avx, with leaf's meaning, built for AVX (a mesh's
+// triangles four at a time), which that walk then calls instead of leaf. Both walks are written
+// once, in render/walk_bvh.inc.
 #define WSD_WALK_NAME walk_bvh
 #define WSD_WALK_ATTRIBUTES gnu::always_inline
 #define WSD_WALK_ENTER enter
+#define WSD_WALK_LEAF(q, child) q.leaf(child)
 #include "render/walk_bvh.inc"
 #if defined(WSD_AVX_DISPATCH)
 #define WSD_WALK_NAME walk_bvh_avx
 #define WSD_WALK_ATTRIBUTES gnu::always_inline, gnu::target("avx")
 #define WSD_WALK_ENTER enter_avx
+#define WSD_WALK_LEAF(q, child) detail::leaf_avx(q, child)
 #include "render/walk_bvh.inc"
 #endif
 

@@ -203,6 +203,23 @@ inline std::shared_ptr<MeshData> perturbed_uv_sphere(int n_theta, int n_phi, Rng
     return m;
 }
 
+// Opaque triangles only, within about [-size, size]³: a few closed meshes of random resolution
+// and loose triangles.
+inline SceneSpec mesh_scene(Rng& rng, double size) {
+    std::vector<ShapeSpec> shapes;
+    for (int i = rng.integer(1, 3); i > 0; --i)
+        shapes.push_back(mesh(perturbed_uv_sphere(rng.integer(2, 40), rng.integer(3, 60), rng,
+                                                  rng.in_box(Vec3(-0.6 * size), Vec3(0.6 * size)),
+                                                  rng.uniform(0, 0.5), 0.4 * size)));
+    for (int i = rng.integer(0, 60); i > 0; --i) {
+        const Vec3 c = rng.in_box(Vec3(-size), Vec3(size));
+        const double r = size * rng.log_uniform(-3, -1);
+        shapes.push_back(
+            triangle(c + r * rng.unit_vector(), c + r * rng.unit_vector(), c + r * rng.unit_vector()));
+    }
+    return scene_of(std::move(shapes));
+}
+
 // An icosphere of `levels` subdivisions (20·4^levels faces, outward winding, shared vertices).
 inline std::shared_ptr<MeshData> icosphere(int levels, float radius, Vec3 center = Vec3(0)) {
     const double t = (1 + std::sqrt(5.0)) / 2;
