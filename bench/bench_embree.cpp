@@ -34,8 +34,9 @@
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
 // one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [--baseline] [SCENE...]
 // (quick: meshes of a hundredth the size, one pass, and no mesh10m unless named; robust: Embree
-// in its robust mode, RTC_SCENE_FLAG_ROBUST; baseline: wsd's single-ray walks test nodes with
-// baseline x86-64 instructions even where the CPU has AVX; SCENE: cornell, mesh1m, mesh10m).
+// in its robust mode, RTC_SCENE_FLAG_ROBUST; baseline: wsd's walks test nodes, triangles and
+// packets with baseline x86-64 instructions even where the CPU has AVX; SCENE: cornell, mesh1m,
+// mesh10m).
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
 
@@ -603,7 +604,7 @@ int main(int argc, char** argv) {
     };
     std::printf(
         "Embree %d.%d.%d, %s mode, one tracing thread; t tolerance %.0e, edge tolerance %.0e (of the float "
-        "scale); wsd's single-ray node test: %s\n",
+        "scale); wsd's walks: %s\n",
         RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, g_robust ? "robust" : "default",
         kTRelTolerance, kEdgeTolerance, avx_walk() ? "AVX" : "baseline x86-64");
     int status = 0;

@@ -394,25 +394,28 @@ embree_table() {
 
 # Every row of the default-mode table below 0.8× Embree, named, and what sets the two apart.
 embree_short_of() {
-  local short robust isa="no AVX-512" walk="baseline x86-64 (this machine has no AVX)"
+  local short robust isa="no AVX-512" walk="baseline x86-64 (this machine has no AVX)" group="two" lanes="SSE2"
+  local packet="SSE (4 lanes a group)"
   short=$(awk -F'|' '$1 == "row" && $2 !~ /robust/ && $6 + 0 < 0.8 { printf "%s%s %s (%s)", sep, $2, $3, $6; sep = "; " }' "$1")
   robust=$(awk -F'|' '$1 == "row" && $2 ~ /robust/ { printf "%s%s %s", sep, $3, $6; sep = ", " }' "$1")
   grep -qw avx512f /proc/cpuinfo && isa="AVX-512, which Embree selects at run time (its 16-ray packets then fill one register)"
-  grep -q "node test: AVX" "$1" && walk="AVX, chosen at run time"
+  if grep -q "wsd's walks: AVX" "$1"; then
+    walk="AVX, chosen at run time" group="four" lanes="AVX" packet="AVX too (8 lanes)"
+  fi
   para "" "Below 0.8× Embree in its default mode: ${short:-none}. What sets the two apart on the meshes:" \
-       "wsd tests each triangle watertight in double precision (two triangles a ray, or two rays a" \
-       "triangle, in one SSE2 instruction), through a leaf of at most 3 triangles whose vertices are" \
+       "wsd tests each triangle watertight in double precision ($group triangles a ray, or $group rays a" \
+       "triangle, in one $lanes instruction), through a leaf of at most 4 triangles whose vertices are" \
        "shared and looked up by index; Embree's default mode tests four triangles at once in single" \
        "precision, with no watertightness, from leaves that hold each triangle's own vertex data. This" \
        "machine's CPU has $isa. wsd's single-ray walks test a node's eight boxes with $walk;" \
-       "its packets test them with SSE (4 lanes a group) and bound the 16 rays by interval arithmetic," \
+       "its packets test them with $packet and bound the 16 rays by interval arithmetic," \
        "one packet a node, where Embree tests each ray. Each wide node a ray visits costs wsd a" \
        "chain of dependent steps (load the node, test its boxes, choose the lane, load the child's index," \
        "compute its address) whose length wider SIMD does not change. Against Embree's robust mode," \
        "which is watertight too, wsd / Embree on mesh1m is: ${robust:-not measured}."
 }
 
-# The million-triangle mesh again, with wsd's single-ray walks held to baseline x86-64 node tests
+# The million-triangle mesh again, with wsd's walks held to baseline x86-64 tests
 # (bench_embree --baseline) where the machine has AVX: what the run-time choice gains.
 embree_baseline_table() {
   if ! grep -qw avx /proc/cpuinfo; then
@@ -422,8 +425,9 @@ embree_baseline_table() {
   local args=(); ((quick)) && args=(--quick)
   log "bench_embree ${args[*]} --baseline mesh1m"
   "$build/bench_embree" "${args[@]}" --baseline mesh1m >"$tmp/embree-baseline.txt"
-  para "" "The same mesh1m rays with wsd's single-ray walks held to baseline x86-64 node tests" \
-       "(\`bench_embree --baseline\`: two 4-lane SSE tests a node instead of one 8-lane AVX test;" \
+  para "" "The same mesh1m rays with wsd's walks held to baseline x86-64 instructions" \
+       "(\`bench_embree --baseline\`: two 4-lane SSE tests a node instead of one 8-lane AVX test," \
+       "two triangles (or packet rays) a 2-lane SSE2 test instead of four a 4-lane AVX test;" \
        "the hits are the same), run after the table above:" \
        "" "| scene | rays | count | wsd M/CPU-s | Embree M/CPU-s | wsd / Embree |" "|---|---|---:|---:|---:|---:|"
   awk -F'|' '$1 == "row" { printf "| %s | %s | %d | %.2f | %.2f | %s |\n", $2, $3, $7, $4, $5, $6 }' "$tmp/embree-baseline.txt" >>"$page"

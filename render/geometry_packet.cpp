@@ -3,7 +3,8 @@
 // At each node one SIMD test bounds, by interval arithmetic over the rays, which of the
 // children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit's
 // arithmetic, lane by lane) picks the rays whose primitives are tested, with the single-ray
-// triangle test's operations (two rays at a time when the rays share their axes). Each ray gets
+// triangle test's operations (two rays at a time when the rays share their axes; on CPUs with
+// AVX four, and eight rays' leaf boxes and a node's eight children at once). Each ray gets
 // exactly the hit intersect() returns: it enters every box intersect() would enter for it (the
 // bounds are conservative, its own test is the same, its limit never below its own), and the
 // closest hit with ties to the lowest id does not depend on the order primitives are tested in.
@@ -30,13 +31,22 @@ using namespace detail;
 // Fewer nodes than primitives, so a node index and its lane fit in 32 bits (BvhChildAt::box).
 static_assert(kMaxPrimitives <= (size_t{1} << (32 - kLaneBits)));
 
+// test_entry for one ray of a packet, compiled once for both walks (flatten does not inline
+// it): a build that contracts products into FMAs might contract the primitive's arithmetic
+// differently in each, and the two must find the same hits. (Triangles keep their products
+// rounded themselves: render/shapes.h.)
+[[gnu::noinline]] bool test_entry_once(const Impl& g, const RayPre& r, uint32_t entry, double limit,
+                                       Counters& c, HitRecord& h) {
+    return test_entry(g, r, entry, limit, c, h);
+}
+
 // Q groups of four rays (lanes = rays; ray 4q + k is lane k of group q).
 template <int Q>
 struct Packet {
     static constexpr int kRays = 4 * Q;
     const RayPre* pre[kRays];
-    // Per ray: RayBoxTest's constants.
-    __m128 o_near[Q][3], o_far[Q][3], inv[Q][3];
+    // Per ray: RayBoxTest's constants, axis by axis (the groups of an axis side by side).
+    alignas(32) __m128 o_near[3][Q], o_far[3][Q], inv[3][Q];
     // For the whole packet (broadcast): origins and inverse directions that bound every ray's
     // slab distances (see bound).
     __m128 po_near[3], po_far[3], inv_lo[3], inv_hi[3];
@@ -54,8 +64,8 @@ struct Packet {
         for (int q = 0; q < Q; ++q) {
             __m128 tn = _mm_setzero_ps(), tf = t_limit[q];
             for (int a = 0; a < 3; ++a) {
-                __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo[a], o_near[q][a]), inv[q][a]);
-                __m128 t1 = _mm_mul_ps(_mm_sub_ps(hi[a], o_far[q][a]), inv[q][a]);
+                __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo[a], o_near[a][q]), inv[a][q]);
+                __m128 t1 = _mm_mul_ps(_mm_sub_ps(hi[a], o_far[a][q]), inv[a][q]);
                 tn = _mm_max_ps(t0, tn);
                 tf = _mm_min_ps(t1, tf);
             }
@@ -89,12 +99,69 @@ struct Packet {
         }
         return mask;
     }
+
+#if defined(WSD_AVX_DISPATCH)
+    // rays_in eight rays at a time (the same operations lane by lane). Not always_inline: leaf
+    // calls it, which is built for every x86-64 and inlined into the AVX walk (flatten).
+    [[gnu::target("avx")]] uint32_t rays_in_avx(const float* base, int i, const float* t_limit) const {
+        static_assert(Q % 2 == 0);
+        __m256 lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = _mm256_broadcast_ss(base + near_off[a] + i);
+            hi[a] = _mm256_broadcast_ss(base + far_off[a] + i);
+        }
+        uint32_t in = 0;
+        for (int h = 0; h < Q / 2; ++h) {
+            __m256 tn = _mm256_setzero_ps(), tf = _mm256_load_ps(t_limit + 8 * h);
+            for (int a = 0; a < 3; ++a) {
+                const __m256 iv = _mm256_load_ps(reinterpret_cast<const float*>(&inv[a][2 * h]));
+                __m256 t0 = _mm256_mul_ps(
+                    _mm256_sub_ps(lo[a], _mm256_load_ps(reinterpret_cast<const float*>(&o_near[a][2 * h]))),
+                    iv);
+                __m256 t1 = _mm256_mul_ps(
+                    _mm256_sub_ps(hi[a], _mm256_load_ps(reinterpret_cast<const float*>(&o_far[a][2 * h]))),
+                    iv);
+                tn = _mm256_max_ps(t0, tn);
+                tf = _mm256_min_ps(t1, tf);
+            }
+            const int m = _mm256_movemask_ps(
+                _mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(RayBoxTest::kWiden)), _CMP_LE_OQ));
+            in |= static_cast<uint32_t>(m) << (8 * h);
+        }
+        return in;
+    }
+
+    // bound for all eight children at once (the same operations lane by lane).
+    [[gnu::target("avx"), gnu::always_inline]] int bound_avx(const BvhWideNode& node, float t_limit,
+                                                             float* t_entry) const {
+        static_assert(kBvhWidth == 8);
+        const float* base = &node.lo[0][0];
+        __m256 tn = _mm256_setzero_ps(), tf = _mm256_set1_ps(t_limit);
+        for (int a = 0; a < 3; ++a) {
+            // The packet-wide constants are broadcast: every lane of them holds the same value.
+            const __m256 lo = _mm256_broadcast_ss(reinterpret_cast<const float*>(&inv_lo[a]));
+            const __m256 hi = _mm256_broadcast_ss(reinterpret_cast<const float*>(&inv_hi[a]));
+            const __m256 dn = _mm256_sub_ps(_mm256_load_ps(base + near_off[a]),
+                                            _mm256_broadcast_ss(reinterpret_cast<const float*>(&po_near[a])));
+            const __m256 df = _mm256_sub_ps(_mm256_load_ps(base + far_off[a]),
+                                            _mm256_broadcast_ss(reinterpret_cast<const float*>(&po_far[a])));
+            const __m256 t0 = _mm256_min_ps(_mm256_mul_ps(dn, lo), _mm256_mul_ps(dn, hi));
+            const __m256 t1 = _mm256_max_ps(_mm256_mul_ps(df, lo), _mm256_mul_ps(df, hi));
+            tn = _mm256_max_ps(t0, tn);
+            tf = _mm256_min_ps(t1, tf);
+        }
+        _mm256_storeu_ps(t_entry, tn);
+        return _mm256_movemask_ps(
+            _mm256_cmp_ps(tn, _mm256_mul_ps(tf, _mm256_set1_ps(RayBoxTest::kWiden)), _CMP_LE_OQ));
+    }
+#endif
 };
 
 // The packet's BVH walk: nearest child first by the packet's interval test (bound); at a leaf,
 // each ray's own slab test picks the rays whose primitives are tested. Rays whose lane in `live`
-// is clear have limit −1 and enter nothing.
-template <int Q>
+// is clear have limit −1 and enter nothing. kAvx: the walk built for AVX (walk_bvh_avx, only where
+// avx_walk() is true), whose triangle tests take four rays at a time.
+template <int Q, bool kAvx>
 struct PacketClosestHit {
     static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
     static constexpr int kRays = 4 * Q;
@@ -103,50 +170,48 @@ struct PacketClosestHit {
     const Packet<Q>& p;
     Best* best;
     Counters& c;
-    alignas(16) float lim[kRays];
+    alignas(32) float lim[kRays];
     __m128 limit[Q];
     float limit_max = -1;
     uint64_t leaf_boxes = 0;
 
-    // Triangle edge functions two rays at a time (double pairs) when every ray of the packet
-    // has the same axes (RayPre::kx, ky, kz): per ray the operations of triangle_edges, so the
-    // rays they reject are those it would reject, and the others take the full test.
+    // Triangle edge functions two or four rays at a time when every ray of the packet has the
+    // same axes (RayPre::kx, ky, kz): per ray the operations of triangle_edges, so the rays they
+    // reject are those it would reject, and the others take the full test.
     bool paired = true;
-    int kx = 0, ky = 1, kz = 2;
-    alignas(16) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays];
+    int axes[3] = {0, 1, 2};
+    alignas(32) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays];
 
     PacketClosestHit(const Impl& g_, const Packet<Q>& p_, Best* best_, uint32_t live, Counters& c_)
         : g(g_), p(p_), best(best_), c(c_) {
         for (int k = 0; k < kRays; ++k) lim[k] = (live >> k & 1) ? to_float_up(best[k].limit) : -1.0f;
         load_limits();
-        kx = p.pre[0]->kx, ky = p.pre[0]->ky, kz = p.pre[0]->kz;
+        axes[0] = p.pre[0]->kx, axes[1] = p.pre[0]->ky, axes[2] = p.pre[0]->kz;
         for (int k = 0; k < kRays; ++k) {
             const RayPre& r = *p.pre[k];
-            paired = paired && r.kx == kx && r.ky == ky && r.kz == kz;
+            paired = paired && r.kx == axes[0] && r.ky == axes[1] && r.kz == axes[2];
             ox[k] = r.ox, oy[k] = r.oy, oz[k] = r.oz, sx[k] = r.sx, sy[k] = r.sy;
         }
     }
 
     // The triangle (vertices v0, v1, v2; canonical id prim, stored at slot) against the rays
-    // of `lanes`, two at a time up to their edge functions, then ray by ray as test_triangle
-    // goes on (finish_edges, triangle_hit) for those whose edge functions do not rule it out.
-    void test_triangle_paired(const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t lanes,
-                              uint32_t prim, uint32_t slot) {
-        const float* a[3] = {glm::value_ptr(v0), glm::value_ptr(v1), glm::value_ptr(v2)};
-        __m128d vx[3], vy[3], vz[3];
-        for (int i = 0; i < 3; ++i) {
-            vx[i] = _mm_set1_pd(static_cast<double>(a[i][kx]));
-            vy[i] = _mm_set1_pd(static_cast<double>(a[i][ky]));
-            vz[i] = _mm_set1_pd(static_cast<double>(a[i][kz]));
-        }
-        for (int j = 0; j < kRays; j += 2) {
-            const uint32_t pair = lanes >> j & 3u;
-            if (pair == 0) continue;
-            c.tri_tests += (pair & 1u) + (pair >> 1);  // std::popcount is a library call on baseline x86-64
-            EdgesPair e;
-            e.compute(vx, vy, vz, _mm_load_pd(ox + j), _mm_load_pd(oy + j), _mm_load_pd(oz + j),
-                      _mm_load_pd(sx + j), _mm_load_pd(sy + j));
-            for (uint32_t l = pair & ~e.ruled_out(); l != 0; l &= l - 1) {
+    // of `lanes`, Group::kWidth at a time up to their edge functions (EdgesPair, or EdgesQuad in
+    // the walk built for AVX), then ray by ray as test_triangle goes on (finish_edges,
+    // triangle_hit) for those whose edge functions do not rule it out.
+    template <class Group>
+    void test_triangle_rays(const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t lanes, uint32_t prim,
+                            uint32_t slot) {
+        constexpr int kWidth = Group::kWidth;
+        const float* v[3] = {glm::value_ptr(v0), glm::value_ptr(v1), glm::value_ptr(v2)};
+        typename Group::Triangle tri;
+        tri.set(v, axes);
+        for (int j = 0; j < kRays; j += kWidth) {
+            const uint32_t group = lanes >> j & ((1u << kWidth) - 1);
+            if (group == 0) continue;
+            c.tri_tests += kChildCount[group];  // std::popcount is a library call on baseline x86-64
+            Group e;
+            e.compute(tri, ox + j, oy + j, oz + j, sx + j, sy + j);
+            for (uint32_t l = group & ~e.ruled_out(); l != 0; l &= l - 1) {
                 const int lane = std::countr_zero(l);
                 TriangleEdges q;
                 e.lane(lane, q);
@@ -160,6 +225,13 @@ struct PacketClosestHit {
         }
     }
 
+#if defined(WSD_AVX_DISPATCH)
+    [[gnu::target("avx"), gnu::always_inline]] int enter_avx(const BvhWideNode& node, uint32_t,
+                                                             float* tn) const {
+        return p.bound_avx(node, limit_max, tn);
+    }
+#endif
+
     void load_limits() {
         __m128 m = _mm_set1_ps(-1.0f);
         for (int q = 0; q < Q; ++q) {
@@ -170,14 +242,27 @@ struct PacketClosestHit {
         limit_max = _mm_cvtss_f32(_mm_max_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1))));
     }
 
-    int enter(const BvhWideNode& node, uint32_t, float* tn) const { return p.bound(node, limit_max, tn); }
-    bool open(float t) const { return t <= limit_max * RayBoxTest::kWiden; }
-    void prefetch_leaf(uint32_t first) const { prefetch_leaf_data(g, first); }
+    int enter(const BvhWideNode& node, uint32_t, float* tn) const {
+        return p.bound(node, limit_max, tn);
+    }
+    bool open(float t) const {
+        return t <= limit_max * RayBoxTest::kWiden;
+    }
+    void prefetch_leaf(uint32_t first) const {
+        prefetch_leaf_data(g, first);
+    }
 
     bool leaf(const Child& e) {
         const BvhWideNode* nodes = g.nodes.data();
-        const uint32_t lanes =
-            p.rays_in(&nodes[e.box >> kLaneBits].lo[0][0], static_cast<int>(e.box & kLaneMask), limit);
+        const float* base = &nodes[e.box >> kLaneBits].lo[0][0];
+        const int i = static_cast<int>(e.box & kLaneMask);
+        uint32_t lanes;
+#if defined(WSD_AVX_DISPATCH)
+        if constexpr (kAvx && Q % 2 == 0)
+            lanes = p.rays_in_avx(base, i, lim);
+        else
+#endif
+            lanes = p.rays_in(base, i, limit);
         leaf_boxes += Q;
         if (lanes == 0) return false;
         // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
@@ -191,7 +276,13 @@ struct PacketClosestHit {
                 const TriPrim& tri = g.tris[slot];
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
                 if (paired) {
-                    test_triangle_paired(v0, v1, v2, lanes, tri.prim, slot);
+#if defined(WSD_AVX_DISPATCH)
+                    if constexpr (kAvx) {
+                        test_triangle_rays<EdgesQuad>(v0, v1, v2, lanes, tri.prim, slot);
+                        continue;
+                    }
+#endif
+                    test_triangle_rays<EdgesPair>(v0, v1, v2, lanes, tri.prim, slot);
                     continue;
                 }
                 for (uint32_t l = lanes; l != 0; l &= l - 1) {
@@ -203,7 +294,7 @@ struct PacketClosestHit {
                 for (uint32_t l = lanes; l != 0; l &= l - 1) {
                     const int k = std::countr_zero(l);
                     HitRecord h;
-                    if (test_entry(g, *p.pre[k], entry, best[k].limit, c, h)) best[k].offer(h, slot);
+                    if (test_entry_once(g, *p.pre[k], entry, best[k].limit, c, h)) best[k].offer(h, slot);
                 }
             }
         }
@@ -216,9 +307,24 @@ struct PacketClosestHit {
     }
 };
 
+#if defined(WSD_AVX_DISPATCH)
+// The walk built for AVX, everything it calls inlined into it (the AVX tests included).
+template <int Q>
+[[gnu::target("avx"), gnu::flatten]] void closest_hit_packet_avx(const Impl& g, const Packet<Q>& p,
+                                                                 Best* best, uint32_t live, Counters& c) {
+    PacketClosestHit<Q, true> q(g, p, best, live, c);
+    uint64_t boxes = 0;
+    walk_bvh_avx(g.nodes.data(), q, boxes);
+    c.boxes += boxes + 4 * q.leaf_boxes;
+}
+#endif
+
 template <int Q>
 void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
-    PacketClosestHit<Q> q(g, p, best, live, c);
+#if defined(WSD_AVX_DISPATCH)
+    if (avx_walk()) return closest_hit_packet_avx(g, p, best, live, c);
+#endif
+    PacketClosestHit<Q, false> q(g, p, best, live, c);
     uint64_t boxes = 0;
     walk_bvh(g.nodes.data(), q, boxes);
     c.boxes += boxes + 4 * q.leaf_boxes;
@@ -255,19 +361,21 @@ bool make_packet(const Ray* rays, int n, const RayPre* pre, Packet<Q>& p) {
     const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
     __m128 on_lo[3], on_hi[3], of_lo[3], of_hi[3], iv_lo[3], iv_hi[3];
     for (int q = 0; q < Q; ++q) {
-        slab_constants4(o[q], d[q], neg, p.o_near[q], p.o_far[q], p.inv[q]);
+        __m128 on[3], of[3], iv[3];
+        slab_constants4(o[q], d[q], neg, on, of, iv);
         for (int a = 0; a < 3; ++a) {
-            const __m128 mag = _mm_andnot_ps(sign_bit, p.inv[q][a]);
+            p.o_near[a][q] = on[a], p.o_far[a][q] = of[a], p.inv[a][q] = iv[a];
+            const __m128 mag = _mm_andnot_ps(sign_bit, iv[a]);
             if (_mm_movemask_ps(_mm_and_ps(_mm_cmplt_ps(mag, inf), _mm_cmpgt_ps(mag, _mm_setzero_ps()))) !=
                 15)
                 return false;
             const bool first = q == 0;
-            on_lo[a] = first ? p.o_near[q][a] : _mm_min_ps(on_lo[a], p.o_near[q][a]);
-            on_hi[a] = first ? p.o_near[q][a] : _mm_max_ps(on_hi[a], p.o_near[q][a]);
-            of_lo[a] = first ? p.o_far[q][a] : _mm_min_ps(of_lo[a], p.o_far[q][a]);
-            of_hi[a] = first ? p.o_far[q][a] : _mm_max_ps(of_hi[a], p.o_far[q][a]);
-            iv_lo[a] = first ? p.inv[q][a] : _mm_min_ps(iv_lo[a], p.inv[q][a]);
-            iv_hi[a] = first ? p.inv[q][a] : _mm_max_ps(iv_hi[a], p.inv[q][a]);
+            on_lo[a] = first ? on[a] : _mm_min_ps(on_lo[a], on[a]);
+            on_hi[a] = first ? on[a] : _mm_max_ps(on_hi[a], on[a]);
+            of_lo[a] = first ? of[a] : _mm_min_ps(of_lo[a], of[a]);
+            of_hi[a] = first ? of[a] : _mm_max_ps(of_hi[a], of[a]);
+            iv_lo[a] = first ? iv[a] : _mm_min_ps(iv_lo[a], iv[a]);
+            iv_hi[a] = first ? iv[a] : _mm_max_ps(iv_hi[a], iv[a]);
         }
     }
     for (int a = 0; a < 3; ++a) {

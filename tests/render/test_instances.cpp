@@ -175,7 +175,7 @@ TEST_CASE("instances render bit-identical to the same shapes written out flat") 
     }
     spec.shapes.push_back(box({-3, -1, 3}, {-2, 0.5, 3.5}, 5));
     require_identical(spec, flattened(spec));
-    // The walks' baseline node test where the default is AVX (render/aabb.h): the same image.
+    // The walks' baseline tests where the default is AVX (render/cpu_features.h): the same image.
     const bool avx = wsd::render::avx_walk();
     wsd::render::set_avx_walk(!avx);
     const auto other = render_spec(spec);

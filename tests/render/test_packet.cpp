@@ -9,6 +9,7 @@
 
 #include "geometry_test_util.h"
 #include "render/aabb.h"
+#include "render/cpu_features.h"
 
 using namespace wsd::render;
 using namespace wsd::render::test;
@@ -109,6 +110,53 @@ TEST_CASE("packets from a camera inside a dense mesh, and through its silhouette
         hits += require_same_as_single(*g, rays, i % 4 < 2 ? 4 : Geometry::kMaxPacket, kInf);
     }
     CHECK(hits > ray_budget(20000) * 4);
+}
+
+TEST_CASE("packets under the walk built for AVX answer as under the baseline walk, bit for bit") {
+    // The AVX walk tests eight children, eight rays' leaf boxes and four rays' triangle edges at
+    // once. On a CPU without AVX both runs take the baseline walk and agree trivially.
+    const bool had = avx_walk();
+    Rng rng(20261129);
+    const int scenes = 12, packets = ray_budget(12000) / scenes;
+    int hits = 0, total = 0;
+    for (int s = 0; s < scenes; ++s) {
+        const double size = rng.log_uniform(-3, 3);
+        const SceneSpec spec =
+            s % 2 == 0 ? mesh_scene(rng, size) : random_scene(rng, rng.integer(1, 300), size);
+        auto g = build_ok(spec, true);
+        REQUIRE(g);
+        INFO("scene " << s << " size " << size << ", AVX available " << set_avx_walk(true));
+        for (int i = 0; i < packets; ++i) {
+            Ray rays[Geometry::kMaxPacket];
+            const Ray base = random_ray(rng, size);
+            make_packet(rng, base, i % 2 == 0 ? 0 : size * rng.log_uniform(-6, -1), rng.log_uniform(-6, -1),
+                        rays);
+            const int n = rng.integer(1, i % 4 < 2 ? 4 : Geometry::kMaxPacket);
+            const double tmax = rng.uniform() < 0.7 ? kInf : rng.uniform(0, 2 * size);
+            RayStats sa, sb;
+            std::optional<HitRecord> a[Geometry::kMaxPacket], b[Geometry::kMaxPacket];
+            set_avx_walk(true);
+            g->intersect_packet(rays, n, tmax, sa, a);
+            set_avx_walk(false);
+            g->intersect_packet(rays, n, tmax, sb, b);
+            for (int k = 0; k < n; ++k) {
+                INFO("lane " << k << " of " << n);
+                REQUIRE(a[k].has_value() == b[k].has_value());
+                if (!a[k]) continue;
+                ++hits;
+                REQUIRE(a[k]->prim == b[k]->prim);
+                REQUIRE(a[k]->slot == b[k]->slot);
+                REQUIRE(a[k]->t == b[k]->t);
+                REQUIRE(a[k]->b1 == b[k]->b1);
+                REQUIRE(a[k]->b2 == b[k]->b2);
+            }
+            REQUIRE(sa.box_tests == sb.box_tests);  // the same nodes, leaves and rays entered
+            REQUIRE(sa.triangle_tests == sb.triangle_tests);
+            total += n;
+        }
+    }
+    set_avx_walk(had);
+    CHECK(hits > total / 5);
 }
 
 TEST_CASE("packets with zero, tiny, huge or invalid direction components fall back and agree") {
