@@ -28,7 +28,7 @@ float node_area(const BvhNode& n) {
 // leaf is tested kLeafGroup primitives at a time (the walk built for AVX tests four triangles at
 // once: render/prim_test.h), each group at the cost of two single tests (kPrimCost each).
 // Weights of a primitive from 0.3 to 3 node visits traced a million-triangle mesh's rays at the
-// same rates, within the machine's noise.
+// same rates, within the machine's noise; so did a group priced at 1.25 to 3 single tests.
 constexpr float kNodeCost = 1.0f;
 constexpr float kPrimCost = 0.8f;
 constexpr uint32_t kLeafGroup = 4;

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "render/geometry_impl.h"
+#include "render/triangle_lanes.h"
 
 namespace wsd::render::detail {
 

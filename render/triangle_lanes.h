@@ -1,0 +1,176 @@
+// The watertight triangle test (render/shapes.h: triangle_edges, finish_edges, triangle_hit) up
+// to its edge functions for several (ray, triangle) pairs at once, one per SIMD lane: two with
+// SSE2 (EdgesPair), four with AVX (EdgesQuad, chosen at run time). Each lane does the scalar
+// code's operations with its roundings, so a lane rules out exactly the pairs the scalar test
+// would, and hands the others on as the scalar test has them. Internal to render/.
+#pragma once
+
+#include <cstdint>
+
+#include "render/shapes.h"
+#if defined(WSD_AVX_DISPATCH)
+#include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace wsd::render {
+
+#if defined(__SSE2__)
+// triangle_edges' translation, shear and edge functions for two (ray, triangle) pairs at once,
+// one per lane, with the same operations and roundings as the scalar code lane by lane: two rays
+// against one triangle (packets) or one ray against two triangles (a leaf). Vertex i of lane l
+// is (vx[i], vy[i], vz[i]) lane l, already permuted to the ray's axes (kx, ky, kz).
+struct EdgesPair {
+    static constexpr uint32_t kWidth = 2;
+    __m128d pz[3], x[3], y[3], e0, e1, e2;
+
+    // Ray r against two triangles: vertex i of lane l's has the float components v[i][l].
+    void compute(const float* const (&v)[3][2], const RayPre& r) {
+        __m128d vx[3], vy[3], vz[3];
+        for (int i = 0; i < 3; ++i) {
+            vx[i] = _mm_set_pd(static_cast<double>(v[i][1][r.kx]), static_cast<double>(v[i][0][r.kx]));
+            vy[i] = _mm_set_pd(static_cast<double>(v[i][1][r.ky]), static_cast<double>(v[i][0][r.ky]));
+            vz[i] = _mm_set_pd(static_cast<double>(v[i][1][r.kz]), static_cast<double>(v[i][0][r.kz]));
+        }
+        compute(vx, vy, vz, _mm_set1_pd(r.ox), _mm_set1_pd(r.oy), _mm_set1_pd(r.oz), _mm_set1_pd(r.sx),
+                _mm_set1_pd(r.sy));
+    }
+    // One triangle in every lane: vertex i's float components v[i], taken on axes k (kx, ky, kz).
+    struct Triangle {
+        __m128d vx[3], vy[3], vz[3];
+        void set(const float* const (&v)[3], const int (&k)[3]) {
+            for (int i = 0; i < 3; ++i) {
+                vx[i] = _mm_set1_pd(static_cast<double>(v[i][k[0]]));
+                vy[i] = _mm_set1_pd(static_cast<double>(v[i][k[1]]));
+                vz[i] = _mm_set1_pd(static_cast<double>(v[i][k[2]]));
+            }
+        }
+    };
+    // Two rays (lane l: RayPre's ox, oy, oz, sx, sy at index l of each array, 16-byte aligned; all
+    // with the triangle's axes) against the triangle.
+    void compute(const Triangle& t, const double* ox, const double* oy, const double* oz, const double* sx,
+                 const double* sy) {
+        compute(t.vx, t.vy, t.vz, _mm_load_pd(ox), _mm_load_pd(oy), _mm_load_pd(oz), _mm_load_pd(sx),
+                _mm_load_pd(sy));
+    }
+
+    void compute(const __m128d (&vx)[3], const __m128d (&vy)[3], const __m128d (&vz)[3], __m128d ox,
+                 __m128d oy, __m128d oz, __m128d sx, __m128d sy) {
+        for (int i = 0; i < 3; ++i) {
+            pz[i] = _mm_sub_pd(vz[i], oz);
+            x[i] = _mm_add_pd(_mm_sub_pd(vx[i], ox), opaque(_mm_mul_pd(sx, pz[i])));
+            y[i] = _mm_add_pd(_mm_sub_pd(vy[i], oy), opaque(_mm_mul_pd(sy, pz[i])));
+        }
+        e0 = _mm_sub_pd(opaque(_mm_mul_pd(x[1], y[2])), opaque(_mm_mul_pd(y[1], x[2])));
+        e1 = _mm_sub_pd(opaque(_mm_mul_pd(x[2], y[0])), opaque(_mm_mul_pd(y[2], x[0])));
+        e2 = _mm_sub_pd(opaque(_mm_mul_pd(x[0], y[1])), opaque(_mm_mul_pd(y[0], x[1])));
+    }
+    // Bit l set when lane l's line misses as finish_edges decides: no edge function is zero (it
+    // would be recomputed) and two of them have opposite signs.
+    uint32_t ruled_out() const {
+        const __m128d zero = _mm_setzero_pd();
+        const __m128d zeros =
+            _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero));
+        const __m128d neg =
+            _mm_or_pd(_mm_or_pd(_mm_cmplt_pd(e0, zero), _mm_cmplt_pd(e1, zero)), _mm_cmplt_pd(e2, zero));
+        const __m128d pos =
+            _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
+        return static_cast<uint32_t>(_mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos))));
+    }
+    // Lane l as triangle_edges leaves it before finish_edges.
+    void lane(int l, TriangleEdges& q) const {
+        const auto at = [l](__m128d v) { return _mm_cvtsd_f64(l == 0 ? v : _mm_unpackhi_pd(v, v)); };
+        q.p0z = at(pz[0]), q.p1z = at(pz[1]), q.p2z = at(pz[2]);
+        q.x0 = at(x[0]), q.y0 = at(y[0]), q.x1 = at(x[1]), q.y1 = at(y[1]), q.x2 = at(x[2]), q.y2 = at(y[2]);
+        q.e0 = at(e0), q.e1 = at(e1), q.e2 = at(e2);
+    }
+};
+#endif
+
+#if defined(WSD_AVX_DISPATCH)
+// EdgesPair for four pairs at once, for CPUs with AVX: only functions built for AVX call it
+// (render/cpu_features.h), and inline it (gnu::flatten: these are not always_inline, so that
+// templates built for every x86-64, such as test_leaf_triangles, may name them). The same
+// operations and roundings lane by lane, no contraction, so each lane's results are those of
+// the scalar code bit for bit.
+struct EdgesQuad {
+    static constexpr uint32_t kWidth = 4;
+    __m256d pz[3], x[3], y[3], e0, e1, e2;
+
+    // opaque() for four lanes: a product stays a rounded product whatever the build's FMA.
+    [[gnu::target("avx"), gnu::always_inline]] static __m256d kept(__m256d v) {
+        asm("" : "+x"(v));
+        return v;
+    }
+    [[gnu::target("avx")]] void compute(const __m256d (&vx)[3], const __m256d (&vy)[3],
+                                        const __m256d (&vz)[3], __m256d ox, __m256d oy, __m256d oz,
+                                        __m256d sx, __m256d sy) {
+        for (int i = 0; i < 3; ++i) {
+            pz[i] = _mm256_sub_pd(vz[i], oz);
+            x[i] = _mm256_add_pd(_mm256_sub_pd(vx[i], ox), kept(_mm256_mul_pd(sx, pz[i])));
+            y[i] = _mm256_add_pd(_mm256_sub_pd(vy[i], oy), kept(_mm256_mul_pd(sy, pz[i])));
+        }
+        e0 = _mm256_sub_pd(kept(_mm256_mul_pd(x[1], y[2])), kept(_mm256_mul_pd(y[1], x[2])));
+        e1 = _mm256_sub_pd(kept(_mm256_mul_pd(x[2], y[0])), kept(_mm256_mul_pd(y[2], x[0])));
+        e2 = _mm256_sub_pd(kept(_mm256_mul_pd(x[0], y[1])), kept(_mm256_mul_pd(y[0], x[1])));
+    }
+    // Ray r against four triangles, as EdgesPair's.
+    [[gnu::target("avx")]] void compute(const float* const (&v)[3][4], const RayPre& r) {
+        __m256d vx[3], vy[3], vz[3];
+        for (int i = 0; i < 3; ++i) {
+            vx[i] = lanes(v[i], r.kx);
+            vy[i] = lanes(v[i], r.ky);
+            vz[i] = lanes(v[i], r.kz);
+        }
+        compute(vx, vy, vz, _mm256_set1_pd(r.ox), _mm256_set1_pd(r.oy), _mm256_set1_pd(r.oz),
+                _mm256_set1_pd(r.sx), _mm256_set1_pd(r.sy));
+    }
+    // Four rays against one triangle, as EdgesPair's (the arrays 32-byte aligned).
+    struct Triangle {
+        __m256d vx[3], vy[3], vz[3];
+        [[gnu::target("avx")]] void set(const float* const (&v)[3], const int (&k)[3]) {
+            for (int i = 0; i < 3; ++i) {
+                vx[i] = _mm256_set1_pd(static_cast<double>(v[i][k[0]]));
+                vy[i] = _mm256_set1_pd(static_cast<double>(v[i][k[1]]));
+                vz[i] = _mm256_set1_pd(static_cast<double>(v[i][k[2]]));
+            }
+        }
+    };
+    [[gnu::target("avx")]] void compute(const Triangle& t, const double* ox, const double* oy,
+                                        const double* oz, const double* sx, const double* sy) {
+        compute(t.vx, t.vy, t.vz, _mm256_load_pd(ox), _mm256_load_pd(oy), _mm256_load_pd(oz),
+                _mm256_load_pd(sx), _mm256_load_pd(sy));
+    }
+    // Component `axis` of four vertices, one a lane.
+    [[gnu::target("avx"), gnu::always_inline]] static __m256d lanes(const float* const (&v)[4], int axis) {
+        return _mm256_set_pd(static_cast<double>(v[3][axis]), static_cast<double>(v[2][axis]),
+                             static_cast<double>(v[1][axis]), static_cast<double>(v[0][axis]));
+    }
+    // EdgesPair::ruled_out, bit l for lane l.
+    [[gnu::target("avx")]] uint32_t ruled_out() const {
+        const __m256d zero = _mm256_setzero_pd();
+        const __m256d zeros = _mm256_or_pd(
+            _mm256_or_pd(_mm256_cmp_pd(e0, zero, _CMP_EQ_OQ), _mm256_cmp_pd(e1, zero, _CMP_EQ_OQ)),
+            _mm256_cmp_pd(e2, zero, _CMP_EQ_OQ));
+        const __m256d neg = _mm256_or_pd(
+            _mm256_or_pd(_mm256_cmp_pd(e0, zero, _CMP_LT_OQ), _mm256_cmp_pd(e1, zero, _CMP_LT_OQ)),
+            _mm256_cmp_pd(e2, zero, _CMP_LT_OQ));
+        const __m256d pos = _mm256_or_pd(
+            _mm256_or_pd(_mm256_cmp_pd(e0, zero, _CMP_GT_OQ), _mm256_cmp_pd(e1, zero, _CMP_GT_OQ)),
+            _mm256_cmp_pd(e2, zero, _CMP_GT_OQ));
+        return static_cast<uint32_t>(_mm256_movemask_pd(_mm256_andnot_pd(zeros, _mm256_and_pd(neg, pos))));
+    }
+    // Lane l as triangle_edges leaves it before finish_edges.
+    [[gnu::target("avx")]] void lane(int l, TriangleEdges& q) const {
+        alignas(32) double v[12][4];
+        const __m256d all[12] = {pz[0], pz[1], pz[2], x[0], y[0], x[1], y[1], x[2], y[2], e0, e1, e2};
+        for (int i = 0; i < 12; ++i) _mm256_store_pd(v[i], all[i]);
+        q.p0z = v[0][l], q.p1z = v[1][l], q.p2z = v[2][l];
+        q.x0 = v[3][l], q.y0 = v[4][l], q.x1 = v[5][l], q.y1 = v[6][l], q.x2 = v[7][l], q.y2 = v[8][l];
+        q.e0 = v[9][l], q.e1 = v[10][l], q.e2 = v[11][l];
+    }
+};
+#endif
+
+}  // namespace wsd::render
