@@ -409,7 +409,13 @@ bool trace_packet(const Impl& g, const Ray* rays, int n, double tmax, RayStats& 
         for (int k = 0; k < n; ++k) test_planes<0>(g, rays[k], best[k], c);
     closest_hit_packet(g, p, best, (1u << n) - 1, c);
     c.flush(stats);
-    for (int k = 0; k < n; ++k) out[k] = best[k].record();
+    // Assigned in place: a whole optional built on the stack and copied (record()) reloaded its
+    // flag byte as part of a wider word, which waits for the byte's store to complete.
+    for (int k = 0; k < n; ++k)
+        if (best[k].hit)
+            out[k] = best[k].h;
+        else
+            out[k].reset();
     return true;
 }
 
