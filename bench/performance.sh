@@ -63,12 +63,14 @@ fmt() { awk -v x="$1" -v d="${2:-2}" 'BEGIN { printf "%.*f", d, x }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 commas() { printf "%d" "$1" | sed ':a; s/\B[0-9]\{3\}\>/,&/; ta'; }
 loadavg() { cut -d' ' -f1-3 /proc/loadavg; }
+cpu_model() { lscpu | sed -n 's/^Model name: *//p' | head -1; }
 
 page=$tmp/page.md
 section() {
   printf '\n## %s\n\n' "$1" >>"$page"
-  [[ -z $only ]] || printf '_Measured on its own by `bench/performance.sh --only %s` on %s (load average before: %s)._\n\n' \
-    "$current" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$(loadavg)" >>"$page"
+  # A section measured later may come from another machine than the page's header names.
+  [[ -z $only ]] || printf '_Measured on its own by `bench/performance.sh --only %s` on %s, on %s, %s cores (load average before: %s)._\n\n' \
+    "$current" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$(cpu_model)" "$(nproc)" "$(loadavg)" >>"$page"
 }
 para() { printf '%s\n' "$@" >>"$page"; }
 
@@ -635,7 +637,7 @@ for current in "${sections[@]}"; do
 done
 load_after=$(loadavg)
 
-model=$(lscpu | sed -n 's/^Model name: *//p' | head -1)
+model=$(cpu_model)
 compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -1)
 compiler_version=$("${compiler:-c++}" --version 2>/dev/null | head -1 || true)
 build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null | head -1)
