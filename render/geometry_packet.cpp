@@ -180,7 +180,7 @@ struct PacketClosestHit {
     // reject are those it would reject, and the others take the full test.
     bool paired = true;
     int axes[3] = {0, 1, 2};
-    alignas(32) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays];
+    alignas(32) double ox[kRays], oy[kRays], oz[kRays], sx[kRays], sy[kRays], sz[kRays];
 
     PacketClosestHit(const Impl& g_, const Packet<Q>& p_, Best* best_, uint32_t live, Counters& c_)
         : g(g_), p(p_), best(best_), c(c_) {
@@ -190,14 +190,13 @@ struct PacketClosestHit {
         for (int k = 0; k < kRays; ++k) {
             const RayPre& r = *p.pre[k];
             paired = paired && r.kx == axes[0] && r.ky == axes[1] && r.kz == axes[2];
-            ox[k] = r.ox, oy[k] = r.oy, oz[k] = r.oz, sx[k] = r.sx, sy[k] = r.sy;
+            ox[k] = r.ox, oy[k] = r.oy, oz[k] = r.oz, sx[k] = r.sx, sy[k] = r.sy, sz[k] = r.sz;
         }
     }
 
     // The triangle (vertices v0, v1, v2; canonical id prim, stored at slot) against the rays
-    // of `lanes`, Group::kWidth at a time up to their edge functions (EdgesPair, or EdgesQuad in
-    // the walk built for AVX), then ray by ray as test_triangle goes on (finish_edges,
-    // triangle_hit) for those whose edge functions do not rule it out.
+    // of `lanes`, Group::kWidth at a time (EdgesPair, or EdgesQuad in the walk built for AVX):
+    // their edge functions, then finish_lanes for the rays whose line meets the triangle.
     template <class Group>
     void test_triangle_rays(const Vec3f& v0, const Vec3f& v1, const Vec3f& v2, uint32_t lanes, uint32_t prim,
                             uint32_t slot) {
@@ -211,17 +210,15 @@ struct PacketClosestHit {
             c.tri_tests += kChildCount[group];  // std::popcount is a library call on baseline x86-64
             Group e;
             e.compute(tri, ox + j, oy + j, oz + j, sx + j, sy + j);
-            for (uint32_t l = group & ~e.ruled_out(); l != 0; l &= l - 1) {
-                const int lane = std::countr_zero(l);
-                TriangleEdges q;
-                e.lane(lane, q);
-                const int k = j + lane;
-                double t, b1, b2;
-                if (finish_edges(*p.pre[k], q) && triangle_hit(q, best[k].limit, t, b1, b2)) {
-                    ++c.tri_hits;
-                    best[k].offer(t, prim, slot, b1, b2);
-                }
-            }
+            const uint32_t live = group & ~e.ruled_out();
+            if (live == 0) continue;
+            finish_lanes(
+                e, live, sz + j, [&](int lane) -> const RayPre& { return *p.pre[j + lane]; },
+                [&](int lane) { return best[j + lane].limit; }, c,
+                [&](int lane, double t, double b1, double b2) {
+                    best[j + lane].offer(t, prim, slot, b1, b2);
+                    return false;
+                });
         }
     }
 

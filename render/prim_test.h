@@ -187,17 +187,48 @@ bool test_other(const Impl& g, const RayPre& r, uint32_t slot, double limit, Cou
 }
 
 #if defined(__SSE2__)
+// The lanes of e in `lanes` (those its edge functions do not rule out), in lane order, as
+// finish_edges and triangle_hit go on for each against limit(l) as it is then: a lane with a zero
+// edge function (recomputed) on its own with ray_of(l), the others together (Group::finish,
+// sz[l]: lane l's RayPre::sz). hit(l, t, b1, b2) takes lane l's hit and returns true to stop;
+// so does this function then.
+template <class Group, class RayOf, class Limit, class Hit>
+[[gnu::always_inline]] inline bool finish_lanes(const Group& e, uint32_t lanes, const double* sz,
+                                                RayOf ray_of, Limit limit, Counters& c, Hit hit) {
+    const uint32_t zero = e.zero_lanes();
+    LaneHits f;
+    const uint32_t hits = (lanes & ~zero) != 0 ? e.finish(sz, f) : 0;
+    for (uint32_t l = lanes; l != 0; l &= l - 1) {
+        const int lane = std::countr_zero(l);
+        double t, b1, b2;
+        if (zero >> lane & 1) [[unlikely]] {
+            TriangleEdges q;
+            e.lane(lane, q);
+            if (!finish_edges(ray_of(lane), q) || !triangle_hit(q, limit(lane), t, b1, b2)) continue;
+        } else {
+            if (!(hits >> lane & 1) || !(f.t[lane] < limit(lane))) continue;
+            t = f.t[lane];
+            b1 = f.e1[lane] / f.det[lane];
+            b2 = f.e2[lane] / f.det[lane];
+        }
+        ++c.tri_hits;
+        if (hit(lane, t, b1, b2)) return true;
+    }
+    return false;
+}
+
 // The triangles tris[first, first + count) of a tree whose leaves hold triangles in order
-// (Impl::tris_in_order) against one ray: Group::kWidth at a time up to their edge functions
-// (EdgesPair, or EdgesQuad in functions built for AVX: the scalar test's operations lane by
-// lane), then each whose line meets the ray as test_triangle goes on, in order, against limit()
-// as it is then. hit(k, t, b1, b2) takes a hit of tris[k] and returns true to stop; so does this
-// function then. Counted as test_triangle: the triangles of each group.
+// (Impl::tris_in_order) against one ray, Group::kWidth at a time (EdgesPair, or EdgesQuad in
+// functions built for AVX: the scalar test's operations lane by lane): their edge functions,
+// then finish_lanes for those whose line meets the ray, in order, against limit() as it is then.
+// hit(k, t, b1, b2) takes a hit of tris[k] and returns true to stop; so does this function then.
+// Counted as test_triangle: the triangles of each group.
 template <class Group, class Limit, class Hit>
 [[gnu::always_inline]] inline bool test_leaf_triangles(const Impl& g, const RayPre& r, uint32_t first,
                                                        uint32_t count, Counters& c, Limit limit, Hit hit) {
     constexpr uint32_t kWidth = Group::kWidth;
     const uint32_t end = first + count;
+    const double sz[4] = {r.sz, r.sz, r.sz, r.sz};
     for (uint32_t k = first; k < end; k += kWidth) {
         // Past the last triangle, lanes repeat it; only the first n count.
         const uint32_t n = std::min(end - k, kWidth);
@@ -209,16 +240,14 @@ template <class Group, class Limit, class Hit>
         }
         Group e;
         e.compute(v, r);
-        for (uint32_t l = ((1u << n) - 1) & ~e.ruled_out(); l != 0; l &= l - 1) {
-            const int lane = std::countr_zero(l);
-            TriangleEdges q;
-            e.lane(lane, q);
-            double t, b1, b2;
-            if (finish_edges(r, q) && triangle_hit(q, limit(), t, b1, b2)) {
-                ++c.tri_hits;
-                if (hit(k + static_cast<uint32_t>(lane), t, b1, b2)) return true;
-            }
-        }
+        const uint32_t lanes = ((1u << n) - 1) & ~e.ruled_out();
+        if (lanes != 0 &&
+            finish_lanes(
+                e, lanes, sz, [&r](int) -> const RayPre& { return r; }, [&limit](int) { return limit(); }, c,
+                [&hit, k](int lane, double t, double b1, double b2) {
+                    return hit(k + static_cast<uint32_t>(lane), t, b1, b2);
+                }))
+            return true;
     }
     return false;
 }

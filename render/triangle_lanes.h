@@ -1,8 +1,9 @@
-// The watertight triangle test (render/shapes.h: triangle_edges, finish_edges, triangle_hit) up
-// to its edge functions for several (ray, triangle) pairs at once, one per SIMD lane: two with
-// SSE2 (EdgesPair), four with AVX (EdgesQuad, chosen at run time). Each lane does the scalar
-// code's operations with its roundings, so a lane rules out exactly the pairs the scalar test
-// would, and hands the others on as the scalar test has them. Internal to render/.
+// The watertight triangle test (render/shapes.h: triangle_edges, finish_edges, triangle_hit) for
+// several (ray, triangle) pairs at once, one per SIMD lane: two with SSE2 (EdgesPair), four with
+// AVX (EdgesQuad, chosen at run time). Each lane does the scalar code's operations with its
+// roundings: a lane rules out exactly the pairs the scalar test would, finishes (t, its error
+// bound, the hit) as the scalar test does, and hands on a lane whose edge function is zero, to be
+// recomputed, as the scalar test has it then. Internal to render/.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +18,12 @@
 namespace wsd::render {
 
 #if defined(__SSE2__)
+// What finish() leaves per lane: t, the determinant and the edge functions that give b1 and b2
+// (triangle_hit divides them only for a hit that is taken).
+struct LaneHits {
+    alignas(32) double t[4], det[4], e1[4], e2[4];
+};
+
 // triangle_edges' translation, shear and edge functions for two (ray, triangle) pairs at once,
 // one per lane, with the same operations and roundings as the scalar code lane by lane: two rays
 // against one triangle (packets) or one ray against two triangles (a leaf). Vertex i of lane l
@@ -77,6 +84,55 @@ struct EdgesPair {
         const __m128d pos =
             _mm_or_pd(_mm_or_pd(_mm_cmpgt_pd(e0, zero), _mm_cmpgt_pd(e1, zero)), _mm_cmpgt_pd(e2, zero));
         return static_cast<uint32_t>(_mm_movemask_pd(_mm_andnot_pd(zeros, _mm_and_pd(neg, pos))));
+    }
+    // Bit l set when one of lane l's edge functions is zero (finish_edges recomputes it).
+    uint32_t zero_lanes() const {
+        const __m128d zero = _mm_setzero_pd();
+        return static_cast<uint32_t>(_mm_movemask_pd(
+            _mm_or_pd(_mm_or_pd(_mm_cmpeq_pd(e0, zero), _mm_cmpeq_pd(e1, zero)), _mm_cmpeq_pd(e2, zero))));
+    }
+    // The rest of finish_edges and triangle_hit for both lanes at once, the same operations lane
+    // by lane (sz: each lane's RayPre::sz), for lanes whose edge functions finish_edges takes as
+    // they are (no zero among them, signs not ruled out): bit l is set when lane l hits at
+    // out.t[l] > δt, before its limit is compared.
+    uint32_t finish(const double* sz, LaneHits& out) const {
+        const __m128d s = _mm_loadu_pd(sz), zero = _mm_setzero_pd(), sign = _mm_set1_pd(-0.0);
+        const __m128d det = _mm_add_pd(_mm_add_pd(e0, e1), e2);
+        const __m128d z0 = _mm_mul_pd(s, pz[0]), z1 = _mm_mul_pd(s, pz[1]), z2 = _mm_mul_pd(s, pz[2]);
+        const __m128d t =
+            _mm_div_pd(_mm_add_pd(_mm_add_pd(opaque(_mm_mul_pd(e0, z0)), opaque(_mm_mul_pd(e1, z1))),
+                                  opaque(_mm_mul_pd(e2, z2))),
+                       det);
+        // TriangleEdges::t_error: std::max({a, b, c}) keeps a until a later value is greater.
+        const auto abs_max = [sign](__m128d a, __m128d b, __m128d c) {
+            const __m128d m = _mm_max_pd(_mm_andnot_pd(sign, b), _mm_andnot_pd(sign, a));
+            return _mm_max_pd(_mm_andnot_pd(sign, c), m);
+        };
+        const __m128d max_zt = abs_max(z0, z1, z2), max_pz = abs_max(pz[0], pz[1], pz[2]);
+        const __m128d max_xt = abs_max(x[0], x[1], x[2]), max_yt = abs_max(y[0], y[1], y[2]);
+        const __m128d max_e = abs_max(e0, e1, e2);
+        const __m128d delta_z = _mm_mul_pd(_mm_set1_pd(gamma(3)), max_zt);
+        const __m128d delta_x = _mm_mul_pd(_mm_set1_pd(gamma(5)), _mm_add_pd(max_xt, max_pz));
+        const __m128d delta_y = _mm_mul_pd(_mm_set1_pd(gamma(5)), _mm_add_pd(max_yt, max_pz));
+        const __m128d delta_e = _mm_mul_pd(
+            _mm_set1_pd(2.0),
+            _mm_add_pd(_mm_add_pd(opaque(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(gamma(2)), max_xt), max_yt)),
+                                  opaque(_mm_mul_pd(delta_y, max_xt))),
+                       opaque(_mm_mul_pd(delta_x, max_yt))));
+        const __m128d bound = _mm_mul_pd(
+            _mm_set1_pd(3.0),
+            _mm_add_pd(_mm_add_pd(opaque(_mm_mul_pd(_mm_mul_pd(_mm_set1_pd(gamma(3)), max_e), max_zt)),
+                                  opaque(_mm_mul_pd(delta_e, max_zt))),
+                       opaque(_mm_mul_pd(delta_z, max_e))));
+        const __m128d t_error = _mm_div_pd(bound, _mm_andnot_pd(sign, det));
+        _mm_store_pd(out.t, t);
+        _mm_store_pd(out.det, det);
+        _mm_store_pd(out.e1, e1);
+        _mm_store_pd(out.e2, e2);
+        // det != 0, t > 0 and not t <= δt, each as the scalar code compares (NaN included).
+        const __m128d hit = _mm_and_pd(_mm_and_pd(_mm_cmpneq_pd(det, zero), _mm_cmpgt_pd(t, zero)),
+                                       _mm_cmpnle_pd(t, t_error));
+        return static_cast<uint32_t>(_mm_movemask_pd(hit));
     }
     // Lane l as triangle_edges leaves it before finish_edges.
     void lane(int l, TriangleEdges& q) const {
@@ -160,6 +216,57 @@ struct EdgesQuad {
             _mm256_or_pd(_mm256_cmp_pd(e0, zero, _CMP_GT_OQ), _mm256_cmp_pd(e1, zero, _CMP_GT_OQ)),
             _mm256_cmp_pd(e2, zero, _CMP_GT_OQ));
         return static_cast<uint32_t>(_mm256_movemask_pd(_mm256_andnot_pd(zeros, _mm256_and_pd(neg, pos))));
+    }
+    // EdgesPair::zero_lanes, bit l for lane l.
+    [[gnu::target("avx")]] uint32_t zero_lanes() const {
+        const __m256d zero = _mm256_setzero_pd();
+        return static_cast<uint32_t>(_mm256_movemask_pd(_mm256_or_pd(
+            _mm256_or_pd(_mm256_cmp_pd(e0, zero, _CMP_EQ_OQ), _mm256_cmp_pd(e1, zero, _CMP_EQ_OQ)),
+            _mm256_cmp_pd(e2, zero, _CMP_EQ_OQ))));
+    }
+    // |a|, |b|, |c| as std::max({a, b, c}) orders them (EdgesPair::finish).
+    [[gnu::target("avx"), gnu::always_inline]] static __m256d abs_max(__m256d a, __m256d b, __m256d c) {
+        const __m256d sign = _mm256_set1_pd(-0.0);
+        const __m256d m = _mm256_max_pd(_mm256_andnot_pd(sign, b), _mm256_andnot_pd(sign, a));
+        return _mm256_max_pd(_mm256_andnot_pd(sign, c), m);
+    }
+    // EdgesPair::finish for four lanes.
+    [[gnu::target("avx")]] uint32_t finish(const double* sz, LaneHits& out) const {
+        const __m256d s = _mm256_loadu_pd(sz), zero = _mm256_setzero_pd();
+        const __m256d det = _mm256_add_pd(_mm256_add_pd(e0, e1), e2);
+        const __m256d z0 = _mm256_mul_pd(s, pz[0]), z1 = _mm256_mul_pd(s, pz[1]),
+                      z2 = _mm256_mul_pd(s, pz[2]);
+        const __m256d t = _mm256_div_pd(
+            _mm256_add_pd(_mm256_add_pd(kept(_mm256_mul_pd(e0, z0)), kept(_mm256_mul_pd(e1, z1))),
+                          kept(_mm256_mul_pd(e2, z2))),
+            det);
+        const __m256d max_zt = abs_max(z0, z1, z2), max_pz = abs_max(pz[0], pz[1], pz[2]);
+        const __m256d max_xt = abs_max(x[0], x[1], x[2]), max_yt = abs_max(y[0], y[1], y[2]);
+        const __m256d max_e = abs_max(e0, e1, e2);
+        const __m256d delta_z = _mm256_mul_pd(_mm256_set1_pd(gamma(3)), max_zt);
+        const __m256d delta_x = _mm256_mul_pd(_mm256_set1_pd(gamma(5)), _mm256_add_pd(max_xt, max_pz));
+        const __m256d delta_y = _mm256_mul_pd(_mm256_set1_pd(gamma(5)), _mm256_add_pd(max_yt, max_pz));
+        const __m256d delta_e = _mm256_mul_pd(
+            _mm256_set1_pd(2.0),
+            _mm256_add_pd(
+                _mm256_add_pd(kept(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(gamma(2)), max_xt), max_yt)),
+                              kept(_mm256_mul_pd(delta_y, max_xt))),
+                kept(_mm256_mul_pd(delta_x, max_yt))));
+        const __m256d bound = _mm256_mul_pd(
+            _mm256_set1_pd(3.0),
+            _mm256_add_pd(
+                _mm256_add_pd(kept(_mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(gamma(3)), max_e), max_zt)),
+                              kept(_mm256_mul_pd(delta_e, max_zt))),
+                kept(_mm256_mul_pd(delta_z, max_e))));
+        const __m256d t_error = _mm256_div_pd(bound, _mm256_andnot_pd(_mm256_set1_pd(-0.0), det));
+        _mm256_store_pd(out.t, t);
+        _mm256_store_pd(out.det, det);
+        _mm256_store_pd(out.e1, e1);
+        _mm256_store_pd(out.e2, e2);
+        const __m256d hit = _mm256_and_pd(
+            _mm256_and_pd(_mm256_cmp_pd(det, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(t, zero, _CMP_GT_OQ)),
+            _mm256_cmp_pd(t, t_error, _CMP_NLE_UQ));
+        return static_cast<uint32_t>(_mm256_movemask_pd(hit));
     }
     // Lane l as triangle_edges leaves it before finish_edges.
     [[gnu::target("avx")]] void lane(int l, TriangleEdges& q) const {
