@@ -113,6 +113,9 @@ struct TriangleEdges {
     double t() const { return (opaque(e0 * z0) + opaque(e1 * z1) + opaque(e2 * z2)) / det; }
     // δt: conservative bound on the error of t (pbrt-v4 IntersectTriangle, with the shear error
     // taken from the unsheared z so that unnormalised directions stay covered).
+    // EdgesPair::finish and EdgesQuad::finish (render/triangle_lanes.h) repeat t, δt and
+    // triangle_hit's comparisons lane by lane, operation for operation: a change here is made
+    // there too (the AVX-against-baseline and BVH-against-brute-force tests compare them).
     double t_error() const {
         const double max_zt = std::max({std::abs(z0), std::abs(z1), std::abs(z2)});
         const double max_pz = std::max({std::abs(p0z), std::abs(p1z), std::abs(p2z)});
