@@ -171,13 +171,21 @@ struct EdgesQuad {
         e1 = _mm256_sub_pd(kept(_mm256_mul_pd(x[2], y[0])), kept(_mm256_mul_pd(y[2], x[0])));
         e2 = _mm256_sub_pd(kept(_mm256_mul_pd(x[0], y[1])), kept(_mm256_mul_pd(y[0], x[1])));
     }
-    // Ray r against four triangles, as EdgesPair's.
+    // Ray r against four triangles, as EdgesPair's. Each vertex is loaded whole (its three
+    // floats; a masked load reads nothing past them), permuted to the ray's axes, and the four
+    // of a corner transposed into lanes: the conversions to double are exact, as one at a time.
     [[gnu::target("avx")]] void compute(const float* const (&v)[3][4], const RayPre& r) {
+        const __m128i axes = _mm_setr_epi32(r.kx, r.ky, r.kz, 3);
+        const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
         __m256d vx[3], vy[3], vz[3];
         for (int i = 0; i < 3; ++i) {
-            vx[i] = lanes(v[i], r.kx);
-            vy[i] = lanes(v[i], r.ky);
-            vz[i] = lanes(v[i], r.kz);
+            __m128 p[4];
+            for (int l = 0; l < 4; ++l) p[l] = _mm_permutevar_ps(_mm_maskload_ps(v[i][l], xyz), axes);
+            const __m128 xy01 = _mm_unpacklo_ps(p[0], p[1]), xy23 = _mm_unpacklo_ps(p[2], p[3]);
+            const __m128 z01 = _mm_unpackhi_ps(p[0], p[1]), z23 = _mm_unpackhi_ps(p[2], p[3]);
+            vx[i] = _mm256_cvtps_pd(_mm_movelh_ps(xy01, xy23));
+            vy[i] = _mm256_cvtps_pd(_mm_movehl_ps(xy23, xy01));
+            vz[i] = _mm256_cvtps_pd(_mm_movelh_ps(z01, z23));
         }
         compute(vx, vy, vz, _mm256_set1_pd(r.ox), _mm256_set1_pd(r.oy), _mm256_set1_pd(r.oz),
                 _mm256_set1_pd(r.sx), _mm256_set1_pd(r.sy));
@@ -197,11 +205,6 @@ struct EdgesQuad {
                                         const double* oz, const double* sx, const double* sy) {
         compute(t.vx, t.vy, t.vz, _mm256_load_pd(ox), _mm256_load_pd(oy), _mm256_load_pd(oz),
                 _mm256_load_pd(sx), _mm256_load_pd(sy));
-    }
-    // Component `axis` of four vertices, one a lane.
-    [[gnu::target("avx"), gnu::always_inline]] static __m256d lanes(const float* const (&v)[4], int axis) {
-        return _mm256_set_pd(static_cast<double>(v[3][axis]), static_cast<double>(v[2][axis]),
-                             static_cast<double>(v[1][axis]), static_cast<double>(v[0][axis]));
     }
     // EdgesPair::ruled_out, bit l for lane l.
     [[gnu::target("avx")]] uint32_t ruled_out() const {
