@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs every test suite (Catch2 unit, golden, analytic render and example
-# tests through CTest). `./test.sh --sanitize` does the same in an ASan+UBSan build at -O1 (build-asan/).
+# tests through CTest). `./test.sh --sanitize` does the same in an ASan+UBSan build at -O1
+# (build-asan/).
 # WSD_WERROR=ON (as CI sets it) makes every compiler warning an error.
 set -euo pipefail
 cd "$(dirname "$0")"

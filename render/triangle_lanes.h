@@ -172,8 +172,9 @@ struct EdgesQuad {
         e2 = _mm256_sub_pd(kept(_mm256_mul_pd(x[0], y[1])), kept(_mm256_mul_pd(y[0], x[1])));
     }
     // Ray r against four triangles, as EdgesPair's. Each vertex is loaded whole (its three
-    // floats; a masked load reads nothing past them), permuted to the ray's axes, and the four
-    // of a corner transposed into lanes: the conversions to double are exact, as one at a time.
+    // floats; a masked load reads nothing past them) and permuted to the ray's axes, and the
+    // four vertices of a corner are transposed into lanes. Float to double is exact, so the lanes
+    // hold what converting component by component gives.
     [[gnu::target("avx")]] void compute(const float* const (&v)[3][4], const RayPre& r) {
         const __m128i axes = _mm_setr_epi32(r.kx, r.ky, r.kz, 3);
         const __m128i xyz = _mm_setr_epi32(-1, -1, -1, 0);
