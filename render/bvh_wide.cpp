@@ -36,103 +36,153 @@ float leaf_cost(float area, uint32_t count) {
     return area * 2 * kPrimCost * static_cast<float>((count + kLeafGroup - 1) / kLeafGroup);
 }
 
-// Per binary node: how many primitives its subtree holds (bits 0-30), whether it is a leaf of the
-// wide tree (bit 31), and the least cost of its subtree as j lanes of a wide node (cost[j - 1],
-// j = 1 .. kBvhWidth): one lane (a leaf or a wide node of its own), or its children's subtrees
-// spread over j lanes. The optimal collapse by dynamic programming, after Ylitie, Karras and
-// Laine, "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" (2017).
-struct Collapse {
-    static constexpr uint32_t kLeafBit = 1u << 31;
-    std::vector<uint32_t> size_;
-    std::vector<std::array<float, kBvhWidth>> cost_;
+// The least cost of a binary node's subtree as j lanes of a wide node (cost[j - 1], j = 1 ..
+// kBvhWidth): one lane (a leaf or a wide node of its own), or its children's subtrees spread over
+// j lanes. The optimal collapse by dynamic programming, after Ylitie, Karras and Laine,
+// "Efficient incoherent ray traversal on GPUs through compressed wide BVHs" (2017).
+using Costs = std::array<float, kBvhWidth>;
+
+// The least cost of spreading two children whose costs are a and b over j lanes (2 <= j), and
+// how many of them go to the first child (the fewest of those that tie).
+float spread(const Costs& a, const Costs& b, int j, int& first_lanes) {
+    float best = std::numeric_limits<float>::infinity();
+    for (int k = 1; k < j; ++k) {
+        const float c = a[k - 1] + b[j - k - 1];
+        if (c < best) {
+            best = c;
+            first_lanes = k;
+        }
+    }
+    return best;
+}
+
+// Per binary node, what the collapse decided, in 64 bits (the costs themselves, 32 bytes a node,
+// are needed only while its parent is filled, and are kept on the stack): whether it is a leaf of
+// the wide tree and then how many primitives it holds; how its children's subtrees spread over a
+// wide node's kBvhWidth lanes; and, given at most j lanes (j = 2 .. kBvhWidth), how many it takes
+// (the fewest that cost the least) and how many of those go to its first child.
+class Collapse {
+public:
     // Filled bottom up: the subtrees below depth kSplitDepth on `threads` threads, then the top.
     static constexpr int kSplitDepth = 6;
     Collapse(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
-        : size_(nodes.size()), cost_(nodes.size()) {
-        std::vector<uint32_t> roots;
-        below(nodes, 0, kSplitDepth, roots);
+        : nodes_(nodes), mergeable_(mergeable), plan_(nodes.size()) {
+        below(0, kSplitDepth, roots_);
+        std::sort(roots_.begin(), roots_.end());  // looked up by fill
         ParallelOptions options;
         options.threads = threads;
-        parallel_for(roots.size(), options, [&](size_t j, int) { fill(nodes, mergeable, roots[j], -1); });
-        fill(nodes, mergeable, 0, kSplitDepth);
+        std::vector<Filled> filled(roots_.size());
+        parallel_for(roots_.size(), options, [&](size_t j, int) { filled[j] = fill(roots_[j], -1); });
+        filled_ = std::move(filled);
+        fill(0, kSplitDepth);
+        roots_.clear();
+        filled_.clear();
     }
+    bool leaf(uint32_t n) const { return (plan_[n] & kLeafBit) != 0; }
+    // The primitives of a leaf of the wide tree.
+    uint32_t size(uint32_t n) const { return static_cast<uint32_t>(plan_[n] & kSizeMask); }
+    // How many of the kBvhWidth lanes of the wide node for inner node n its first child's
+    // subtree takes.
+    int first_lanes(uint32_t n) const { return static_cast<int>(plan_[n] >> kWideShift & 7u); }
+    // The lanes of binary node n's subtree given at most j of them, appended to kids.
+    void lanes(uint32_t n, int j, uint32_t* kids, int& count) const {
+        if (j > 1) {
+            const uint64_t choice = plan_[n] >> (kChoiceShift + 6 * (j - 2));
+            j = static_cast<int>(choice & 7u) + 1;  // the fewest lanes that cost the least
+            if (j > 1 && nodes_[n].count == 0) {
+                const int k = static_cast<int>(choice >> 3 & 7u);
+                lanes(nodes_[n].first, k, kids, count);
+                lanes(nodes_[n].first + 1, j - k, kids, count);
+                return;
+            }
+        }
+        kids[count++] = n;
+    }
+    // The start of the order range of n's subtree: its leftmost leaf's.
+    uint32_t first(uint32_t n) const {
+        while (nodes_[n].count == 0) n = nodes_[n].first;
+        return nodes_[n].first;
+    }
+
+private:
+    // Bits of a plan: the size of a leaf, the leaf bit, first_lanes, then for j = 2 ..
+    // kBvhWidth six bits each: the lanes taken less one, and how many go to the first child.
+    static constexpr uint64_t kSizeMask = 0xff;
+    static constexpr uint64_t kLeafBit = 1u << 8;
+    static constexpr int kWideShift = 9;
+    static constexpr int kChoiceShift = 12;
+    static_assert(kBvhWidth == 8 && kChoiceShift + 6 * (kBvhWidth - 1) <= 64);
+    static_assert(kMaxLeafCount <= kSizeMask && kWideMergeLeaf <= kSizeMask);
+
+    struct Filled {
+        uint32_t size = 0;  // primitives in the subtree
+        Costs cost{};
+    };
+
     // The nodes `depth` levels below n (or leaves above that), into roots.
-    static void below(const std::vector<BvhNode>& nodes, uint32_t n, int depth,
-                      std::vector<uint32_t>& roots) {
-        if (depth == 0 || nodes[n].count > 0) {
+    void below(uint32_t n, int depth, std::vector<uint32_t>& roots) const {
+        if (depth == 0 || nodes_[n].count > 0) {
             roots.push_back(n);
             return;
         }
-        below(nodes, nodes[n].first, depth - 1, roots);
-        below(nodes, nodes[n].first + 1, depth - 1, roots);
+        below(nodes_[n].first, depth - 1, roots);
+        below(nodes_[n].first + 1, depth - 1, roots);
     }
-    // The least cost of binary node n's children over j lanes (2 <= j), and how many of them
-    // go to the first child (the fewest of those that tie).
-    float spread(const std::vector<BvhNode>& nodes, uint32_t n, int j, int* first_lanes) const {
-        const auto& a = cost_[nodes[n].first];
-        const auto& b = cost_[nodes[n].first + 1];
-        float best = std::numeric_limits<float>::infinity();
-        for (int k = 1; k < j; ++k) {
-            const float c = a[k - 1] + b[j - k - 1];
-            if (c < best) {
-                best = c;
-                if (first_lanes) *first_lanes = k;
-            }
+    // Plans n's subtree and returns its size and costs; a node `depth` levels below n is taken as
+    // planned already, its result in filled_ (depth < 0: none is).
+    Filled fill(uint32_t n, int depth) {
+        if (depth == 0) {
+            const auto at = std::lower_bound(roots_.begin(), roots_.end(), n);
+            return filled_[static_cast<size_t>(at - roots_.begin())];
         }
-        return best;
-    }
-    // Fills n's subtree and returns its size; a node `depth` levels below n is taken as filled
-    // already (depth < 0: none is).
-    uint32_t fill(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, uint32_t n, int depth) {
-        if (depth == 0) return size(n);
-        const float area = node_area(nodes[n]);
-        auto& c = cost_[n];
-        if (nodes[n].count > 0) {
-            size_[n] = nodes[n].count | kLeafBit;
-            c.fill(leaf_cost(area, nodes[n].count));
-            return nodes[n].count;
+        const BvhNode& node = nodes_[n];
+        const float area = node_area(node);
+        Filled out;
+        if (node.count > 0) {
+            plan_[n] = node.count | kLeafBit;
+            out.size = node.count;
+            out.cost.fill(leaf_cost(area, node.count));
+            return out;
         }
-        const uint32_t size = fill(nodes, mergeable, nodes[n].first, depth - 1) +
-                              fill(nodes, mergeable, nodes[n].first + 1, depth - 1);
-        const float inner = area * kNodeCost + spread(nodes, n, kBvhWidth, nullptr);
-        const float as_leaf = leaf_cost(area, size);
+        const Filled a = fill(node.first, depth - 1);
+        const Filled b = fill(node.first + 1, depth - 1);
+        out.size = a.size + b.size;
+        // The least cost over j lanes and its first child's share, j = 2 .. kBvhWidth.
+        float spread_cost[kBvhWidth + 1];
+        int share[kBvhWidth + 1];
+        for (int j = 2; j <= kBvhWidth; ++j) spread_cost[j] = spread(a.cost, b.cost, j, share[j]);
+        const float inner = area * kNodeCost + spread_cost[kBvhWidth];
+        const float as_leaf = leaf_cost(area, out.size);
         const bool leaf =
-            size <= kWideMergeLeaf && as_leaf <= inner && mergeable && mergeable(first(nodes, n), size);
-        size_[n] = size | (leaf ? kLeafBit : 0);
+            out.size <= kWideMergeLeaf && as_leaf <= inner && mergeable_ && mergeable_(first(n), out.size);
+        auto& c = out.cost;
         c[0] = leaf ? as_leaf : inner;
-        for (int j = 2; j <= kBvhWidth; ++j) c[j - 1] = std::min(c[j - 2], spread(nodes, n, j, nullptr));
-        return size;
-    }
-    bool leaf(uint32_t n) const { return (size_[n] & kLeafBit) != 0; }
-    uint32_t size(uint32_t n) const { return size_[n] & ~kLeafBit; }
-    // The start of the order range of n's subtree: its leftmost leaf's.
-    static uint32_t first(const std::vector<BvhNode>& nodes, uint32_t n) {
-        while (nodes[n].count == 0) n = nodes[n].first;
-        return nodes[n].first;
-    }
-    // The lanes of binary node n's subtree given at most j of them, appended to kids.
-    void lanes(const std::vector<BvhNode>& nodes, uint32_t n, int j, uint32_t* kids, int& count) const {
-        const auto& c = cost_[n];
-        while (j > 1 && c[j - 2] <= c[j - 1]) --j;  // the fewest lanes that cost the least
-        if (j == 1 || nodes[n].count > 0) {
-            kids[count++] = n;
-            return;
+        for (int j = 2; j <= kBvhWidth; ++j) c[j - 1] = std::min(c[j - 2], spread_cost[j]);
+        uint64_t plan = (leaf ? out.size | kLeafBit : 0) | uint64_t(share[kBvhWidth]) << kWideShift;
+        for (int j = 2; j <= kBvhWidth; ++j) {
+            int taken = j;
+            while (taken > 1 && c[taken - 2] <= c[taken - 1]) --taken;
+            const uint64_t choice = uint64_t(taken - 1) | uint64_t(taken > 1 ? share[taken] : 0) << 3;
+            plan |= choice << (kChoiceShift + 6 * (j - 2));
         }
-        int k = 1;
-        spread(nodes, n, j, &k);
-        lanes(nodes, nodes[n].first, k, kids, count);
-        lanes(nodes, nodes[n].first + 1, j - k, kids, count);
+        plan_[n] = plan;
+        return out;
     }
+
+    const std::vector<BvhNode>& nodes_;
+    const WideLeafFn& mergeable_;
+    std::vector<uint64_t> plan_;
+    std::vector<uint32_t> roots_;  // while filling: the subtrees filled first, in node order
+    std::vector<Filled> filled_;
 };
 
 // The children of the wide node for inner node `n`: its two children's subtrees spread over at
 // most kBvhWidth lanes at the least cost. Returns their number.
 int wide_children(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, uint32_t* kids) {
-    int k = 1;
-    r.spread(nodes, n, kBvhWidth, &k);
+    const int k = r.first_lanes(n);
     int count = 0;
-    r.lanes(nodes, nodes[n].first, k, kids, count);
-    r.lanes(nodes, nodes[n].first + 1, kBvhWidth - k, kids, count);
+    r.lanes(nodes[n].first, k, kids, count);
+    r.lanes(nodes[n].first + 1, kBvhWidth - k, kids, count);
     return count;
 }
 
@@ -179,7 +229,7 @@ uint32_t write_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32
     for (int i = 0; i < count; ++i) {
         set_lane(node, i, nodes[kids[i]]);
         if (r.leaf(kids[i])) {
-            node.set_child(i, Collapse::first(nodes, kids[i]), r.size(kids[i]));
+            node.set_child(i, r.first(kids[i]), r.size(kids[i]));
         } else {
             node.set_child(i, next, 0);
             next = place(kids[i], next);
