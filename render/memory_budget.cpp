@@ -17,7 +17,7 @@ namespace {
 // Peak bytes per stored primitive for its tree: the build's bounds, references and binary nodes
 // (temporaries), then the wide nodes and the leaf order that stay (a mesh's order is dropped
 // after the build, so its peak still holds it). With the triangle's own record
-// and vertices this makes about 154 bytes a triangle, against 120 measured (`--stats` peak memory
+// and vertices this makes about 154 bytes a triangle, against 106 measured (`--stats` peak memory
 // of a 10^6-triangle mesh less a 9·10^4-triangle one, less the mesh data and file read before
 // the build): a margin, so that a scene refused would not have fitted.
 constexpr size_t kTreeBytes = 128;
