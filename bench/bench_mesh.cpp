@@ -1,19 +1,23 @@
 // Geometry benchmark: a closed 1,000,000-triangle UV sphere. Measures the Geometry build on 1
-// and 2 threads, bytes per triangle, primary (closest-hit) and shadow (any-hit) rays per
-// CPU-second on one thread (primary rays one by one, and as packets of 2×2 and 4×4 pixels; the
-// renderer traces one-ray-a-pixel images in 4×4 blocks), and the same queries on the Cornell
-// box's 28 primitives.
-// Each rate is the median of 5 passes taken in turn with the others. Prints measured numbers
-// only. Usage: bench_mesh [slices stacks] (default 1000 501).
+// and 2 threads, bytes per triangle (and the build's peak), primary (closest-hit) and shadow (any-hit) rays
+// per CPU-second on one thread (primary rays one by one, and as packets of 2×2 and 4×4 pixels; the renderer
+// traces one-ray-a-pixel images in 4×4 blocks), and the same queries on the Cornell box's 28 primitives. Each
+// rate is the median of 5 passes taken in turn with the others. Prints measured numbers only. Usage:
+// bench_mesh [slices stacks] (default 1000 501).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "bench/cornell_geometry.h"
@@ -33,6 +37,26 @@ double cpu_now() {
 
 double wall_now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// A figure of /proc/self/status in KiB ("VmRSS:", "VmHWM:"), or -1 where there is none.
+long status_kib(const std::string& key) {
+    std::ifstream f("/proc/self/status");
+    std::string line;
+    while (std::getline(f, line))
+        if (line.compare(0, key.size(), key) == 0) return std::atol(line.c_str() + key.size());
+    return -1;
+}
+
+// Returns the memory the allocator keeps free to the system (so that a build cannot reuse it
+// unseen), then resets the process's peak resident memory to its current value (Linux); false
+// where it cannot.
+bool reset_peak() {
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
+    std::ofstream f("/proc/self/clear_refs");
+    return static_cast<bool>(f << "5" << std::flush);
 }
 
 using wsd::bench::cornell_geometry;
@@ -168,8 +192,11 @@ int main(int argc, char** argv) {
     std::printf("mesh: %zu triangles, %zu vertices\n", mesh.mesh->faces.size(), mesh.mesh->vertices.size());
 
     std::unique_ptr<Geometry> g;
+    double peak_per_tri = -1;  // the 2-thread build's peak memory above what was resident before it
     for (int threads : {1, 2}) {
         std::vector<SpecError> errors;
+        const bool peak = reset_peak();
+        const long before = status_kib("VmRSS:");
         double w0 = wall_now();
         g = Geometry::build(spec, errors, true, threads);
         double w1 = wall_now();
@@ -177,6 +204,10 @@ int main(int argc, char** argv) {
             std::printf("build failed: %s\n", errors.empty() ? "?" : errors[0].message.c_str());
             return 1;
         }
+        const long hwm = status_kib("VmHWM:");
+        if (peak && before >= 0 && hwm >= 0)
+            peak_per_tri =
+                1024.0 * static_cast<double>(hwm - before) / static_cast<double>(g->triangle_count());
         std::printf("build (validation + world vertices + BVH), %d thread%s: %.3f s wall\n", threads,
                     threads == 1 ? "" : "s", w1 - w0);
     }
@@ -185,6 +216,10 @@ int main(int argc, char** argv) {
                 bytes / static_cast<double>(g->triangle_count()),
                 static_cast<double>(mesh.mesh->vertices.size() * 12 + mesh.mesh->faces.size() * 12) /
                     static_cast<double>(g->triangle_count()));
+    if (peak_per_tri >= 0)
+        std::printf(
+            "build peak: %.1f bytes/triangle (2 threads; resident memory above that before the build)\n",
+            peak_per_tri);
 
     Throughput t = measure(*g, {0.3, 0.4, -3}, {0, 0, 0}, 45, {5, 5, -5}, 1024);
     std::printf("mesh primary rays: %.2f M/CPU-s (%.1f %% hit; %.1f box tests, %.1f triangle tests a ray)\n",

@@ -327,6 +327,7 @@ mesh_table() {
        "| BVH build (validation, world vertices, BVH), 1 thread | $(awk '/1 thread:/ { print $(NF-2); exit }' "$f") s |" \
        "| the same, 2 threads | $(awk '/2 threads:/ { print $(NF-2); exit }' "$f") s |" \
        "| memory per triangle, geometry + BVH (+ the mesh data itself) | $(field "$f" '^memory:' 2) (+ $(awk '/^memory:/ { sub(/\)/, "", $NF); print $NF }' "$f")) bytes |" \
+       "| peak memory per triangle while building on 2 threads, above that before the build | $(field "$f" '^build peak:' 3) bytes |" \
        "| mesh camera rays, one at a time | $(field "$f" '^mesh primary rays:' 4) M/CPU-s |" \
        "| mesh camera rays, 2×2-pixel packets | $(field "$f" 'in packets:' 8) M/CPU-s |" \
        "| mesh camera rays, 4×4-pixel packets | $(awk '/in packets:/ { print $(NF-1); exit }' "$f") M/CPU-s |" \
