@@ -119,14 +119,14 @@ struct ClosestHit : OneRayTest {
     Counters& c;
 
     bool leaf(const Child& e) {
-        closest_in<kFilter>(g, r, e.first, e.count, best, c);
+        closest_in<kFilter>(g, r, e.first(), e.count(), best, c);
         limit = to_float_up(best.limit);
         return false;
     }
 #if defined(WSD_AVX_DISPATCH)
     [[gnu::target("avx")]] bool leaf_avx(const Child& e) {
         if (kFilter == 2 || !g.tris_in_order) return leaf(e);
-        closest_in_avx(g, r, e.first, e.count, best, c);
+        closest_in_avx(g, r, e.first(), e.count(), best, c);
         limit = to_float_up(best.limit);
         return false;
     }
@@ -149,11 +149,11 @@ struct AnyHit : OneRayTest {
     double tmax;
     Counters& c;
 
-    bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first, e.count, tmax, c); }
+    bool leaf(const Child& e) { return any_in<kFilter>(g, r, e.first(), e.count(), tmax, c); }
 #if defined(WSD_AVX_DISPATCH)
     [[gnu::target("avx")]] bool leaf_avx(const Child& e) {
         if (kFilter == 2 || !g.tris_in_order) return leaf(e);
-        return any_in_avx(g, r, e.first, e.count, tmax, c);
+        return any_in_avx(g, r, e.first(), e.count(), tmax, c);
     }
 #endif
     void prefetch_leaf(uint32_t first) const {

@@ -265,7 +265,7 @@ struct PacketClosestHit {
         // Primitive by primitive, each for every ray in the leaf: a triangle's vertices are
         // fetched once. Each ray still meets the primitives in order (not that it matters: the
         // closest hit with ties to the lowest id does not depend on the order).
-        for (uint32_t j = e.first; j < e.first + e.count; ++j) {
+        for (uint32_t j = e.first(); j < e.first() + e.count(); ++j) {
             const uint32_t entry = entry_at(g, j);
             const uint32_t slot = entry & kSlotMask;
             double t, b1, b2;

@@ -127,7 +127,7 @@ struct ShaftGather {
     }
 
     bool leaf(const Child& c) {
-        for (uint32_t k = c.first; k < c.first + c.count; ++k) {
+        for (uint32_t k = c.first(); k < c.first() + c.count(); ++k) {
             const uint32_t e = entry_at(g, k);
             if (g.has_transmissive && !passes<1>(e)) {
                 // Shadow rays walk the transmissive primitives separately, from points along

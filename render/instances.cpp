@@ -236,7 +236,7 @@ struct InnerClosest : OneRayTest {
     Best& best;
 
     bool leaf(const Child& e) {
-        for (uint32_t k = e.first; k < e.first + e.count; ++k) ir.test(k, best);
+        for (uint32_t k = e.first(); k < e.first() + e.count(); ++k) ir.test(k, best);
         limit = to_float_up(best.limit);
         return false;
     }
@@ -251,7 +251,7 @@ struct InnerAny : OneRayTest {
     Best& best;
 
     bool leaf(const Child& e) {
-        for (uint32_t k = e.first; k < e.first + e.count; ++k) {
+        for (uint32_t k = e.first(); k < e.first() + e.count(); ++k) {
             ir.test(k, best);
             if (best.hit) return true;
         }

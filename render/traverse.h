@@ -31,14 +31,16 @@ enum class WalkOrder {
     LeavesFirst,
 };
 
-// A child that the walk reached: count == 0 for an inner child (its node is nodes[first]),
-// otherwise a leaf over order[first, first + count); t is the entry distance the node test gave.
+// A child that the walk reached, as its node holds it (BvhWideNode::child: 8 bytes a stack entry,
+// pushed and popped whole): count() == 0 for an inner child (its node is nodes[first()]),
+// otherwise a leaf over order[first(), first() + count()); t is the entry distance the node test
+// gave.
 struct BvhChild {
-    uint32_t first, count;
+    uint32_t word;
     float t;
-    static BvhChild at(const BvhWideNode& node, uint32_t, int i, float t) {
-        return {node.first(i), node.count(i), t};
-    }
+    uint32_t first() const { return word & BvhWideNode::kFirstMask; }
+    uint32_t count() const { return word >> BvhWideNode::kFirstBits; }
+    static BvhChild at(const BvhWideNode& node, uint32_t, int i, float t) { return {node.child[i], t}; }
 };
 
 // The same, and where its box is (lane box & kLaneMask of node box >> kLaneBits), for queries
@@ -48,11 +50,13 @@ inline constexpr int kLaneBits = std::bit_width(static_cast<unsigned>(kBvhWidth 
 inline constexpr uint32_t kLaneMask = (1u << kLaneBits) - 1;
 
 struct BvhChildAt {
-    uint32_t first, count;
+    uint32_t word;
     float t;
     uint32_t box;
+    uint32_t first() const { return word & BvhWideNode::kFirstMask; }
+    uint32_t count() const { return word >> BvhWideNode::kFirstBits; }
     static BvhChildAt at(const BvhWideNode& node, uint32_t index, int i, float t) {
-        return {node.first(i), node.count(i), t, index << kLaneBits | static_cast<uint32_t>(i)};
+        return {node.child[i], t, index << kLaneBits | static_cast<uint32_t>(i)};
     }
 };
 

@@ -81,7 +81,7 @@ struct Recorder {
 
     int enter(const BvhWideNode& node, uint32_t, float* tn) const { return r.hit(node, limit, tn); }
     bool leaf(const Child& c) {
-        leaves.push_back({c.first, c.count});
+        leaves.push_back({c.first(), c.count()});
         return static_cast<int>(leaves.size()) == kStopAt;
     }
     bool open(float) const { return true; }
