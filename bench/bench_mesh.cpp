@@ -1,26 +1,27 @@
 // Geometry benchmark: a closed 1,000,000-triangle UV sphere. Measures the Geometry build on 1
-// and 2 threads, bytes per triangle (and the build's peak), primary (closest-hit) and shadow (any-hit) rays
-// per CPU-second on one thread (primary rays one by one, and as packets of 2×2 and 4×4 pixels; the renderer
-// traces one-ray-a-pixel images in 4×4 blocks), and the same queries on the Cornell box's 28 primitives. Each
-// rate is the median of 5 passes taken in turn with the others. Prints measured numbers only. Usage:
-// bench_mesh [slices stacks] (default 1000 501).
+// and 2 threads (and the 2-thread build's peak memory), bytes per triangle, primary (closest-hit)
+// and shadow (any-hit) rays per CPU-second on one thread (primary rays one by one, and as packets
+// of 2×2 and 4×4 pixels; the renderer traces one-ray-a-pixel images in 4×4 blocks), and the same
+// queries on the Cornell box's 28 primitives.
+// Each rate is the median of 5 passes taken in turn with the others. Prints measured numbers
+// only. Usage: bench_mesh [slices stacks] (default 1000 501).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
 #include <memory>
 #include <optional>
-#include <string>
 #include <vector>
 
+#include "app/io_util.h"
 #include "bench/cornell_geometry.h"
+#include "bench/memory_probe.h"
 #include "bench/uv_sphere.h"
 #include "render/geometry.h"
 #include "render/math.h"
@@ -39,24 +40,13 @@ double wall_now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// A figure of /proc/self/status in KiB ("VmRSS:", "VmHWM:"), or -1 where there is none.
-long status_kib(const std::string& key) {
-    std::ifstream f("/proc/self/status");
-    std::string line;
-    while (std::getline(f, line))
-        if (line.compare(0, key.size(), key) == 0) return std::atol(line.c_str() + key.size());
-    return -1;
-}
-
-// Returns the memory the allocator keeps free to the system (so that a build cannot reuse it
-// unseen), then resets the process's peak resident memory to its current value (Linux); false
-// where it cannot.
-bool reset_peak() {
+// Returns the memory the allocator keeps free to the system, so that a build cannot reuse it
+// unseen, then resets the peak resident memory; false where the peak cannot be reset.
+bool start_peak() {
 #if defined(__GLIBC__)
     malloc_trim(0);
 #endif
-    std::ofstream f("/proc/self/clear_refs");
-    return static_cast<bool>(f << "5" << std::flush);
+    return wsd::bench::reset_peak_memory();
 }
 
 using wsd::bench::cornell_geometry;
@@ -195,8 +185,8 @@ int main(int argc, char** argv) {
     double peak_per_tri = -1;  // the 2-thread build's peak memory above what was resident before it
     for (int threads : {1, 2}) {
         std::vector<SpecError> errors;
-        const bool peak = reset_peak();
-        const long before = status_kib("VmRSS:");
+        const bool peak = start_peak();
+        const long long before = wsd::bench::resident_bytes();
         double w0 = wall_now();
         g = Geometry::build(spec, errors, true, threads);
         double w1 = wall_now();
@@ -204,10 +194,9 @@ int main(int argc, char** argv) {
             std::printf("build failed: %s\n", errors.empty() ? "?" : errors[0].message.c_str());
             return 1;
         }
-        const long hwm = status_kib("VmHWM:");
-        if (peak && before >= 0 && hwm >= 0)
-            peak_per_tri =
-                1024.0 * static_cast<double>(hwm - before) / static_cast<double>(g->triangle_count());
+        const auto hwm = static_cast<long long>(wsd::app::peak_memory_bytes());
+        if (peak && before >= 0 && hwm > 0)
+            peak_per_tri = static_cast<double>(hwm - before) / static_cast<double>(g->triangle_count());
         std::printf("build (validation + world vertices + BVH), %d thread%s: %.3f s wall\n", threads,
                     threads == 1 ? "" : "s", w1 - w0);
     }

@@ -7,9 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 
+#include "app/io_util.h"
+#include "bench/memory_probe.h"
 #include "lang/load.h"
 #include "lang/parser.h"
 
@@ -18,31 +19,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using wsd::lang::Diagnostics;
 using wsd::lang::SourceManager;
-
-// VmHWM (peak resident set) in bytes, or -1 when /proc is unavailable.
-long long peak_rss() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line)) {
-        if (line.rfind("VmHWM:", 0) == 0) return std::atoll(line.c_str() + 6) * 1024;
-    }
-    return -1;
-}
-
-long long current_rss() {
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line)) {
-        if (line.rfind("VmRSS:", 0) == 0) return std::atoll(line.c_str() + 6) * 1024;
-    }
-    return -1;
-}
-
-// Resets VmHWM to the current RSS (Linux ≥ 4.0), so each phase's peak is its own.
-void reset_peak() {
-    std::ofstream clear("/proc/self/clear_refs");
-    clear << "5";
-}
 
 void append_number(std::string& out, double v) {
     char buf[32];
@@ -131,15 +107,15 @@ double seconds_since(Clock::time_point t0) {
 // Lex + parse only; returns false on errors.
 bool bench_parse(const char* name, std::string text, size_t triangles) {
     const double mb = static_cast<double>(text.size()) / 1e6;
-    reset_peak();
-    const long long base = current_rss() - static_cast<long long>(text.size());
+    wsd::bench::reset_peak_memory();
+    const long long base = wsd::bench::resident_bytes() - static_cast<long long>(text.size());
     SourceManager sources;
     Diagnostics diags;
     const auto t0 = Clock::now();
     const uint32_t file = sources.add(name, std::move(text));
     const wsd::lang::Program program = wsd::lang::parse(file, sources, diags);
     const double secs = seconds_since(t0);
-    const long long peak = peak_rss();
+    const auto peak = static_cast<long long>(wsd::app::peak_memory_bytes());
     if (diags.has_errors()) {
         std::fputs(wsd::lang::format_diagnostics(diags, sources).c_str(), stderr);
         return false;
@@ -156,8 +132,8 @@ bool bench_parse(const char* name, std::string text, size_t triangles) {
 
 bool bench_load(const char* name, std::string text, size_t triangles) {
     const double mb = static_cast<double>(text.size()) / 1e6;
-    reset_peak();
-    const long long base = current_rss() - static_cast<long long>(text.size());
+    wsd::bench::reset_peak_memory();
+    const long long base = wsd::bench::resident_bytes() - static_cast<long long>(text.size());
     SourceManager sources;
     Diagnostics diags;
     wsd::lang::LoadOptions options;
@@ -165,7 +141,7 @@ bool bench_load(const char* name, std::string text, size_t triangles) {
     const auto t0 = Clock::now();
     const auto loaded = wsd::lang::load_scene(name, std::move(text), sources, diags, options);
     const double secs = seconds_since(t0);
-    const long long peak = peak_rss();
+    const auto peak = static_cast<long long>(wsd::app::peak_memory_bytes());
     if (!loaded || diags.has_errors()) {
         std::fputs(wsd::lang::format_diagnostics(diags, sources).c_str(), stderr);
         return false;
