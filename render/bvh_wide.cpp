@@ -71,9 +71,8 @@ public:
         std::sort(roots_.begin(), roots_.end());  // looked up by fill
         ParallelOptions options;
         options.threads = threads;
-        std::vector<Filled> filled(roots_.size());
-        parallel_for(roots_.size(), options, [&](size_t j, int) { filled[j] = fill(roots_[j], -1); });
-        filled_ = std::move(filled);
+        filled_.resize(roots_.size());
+        parallel_for(roots_.size(), options, [&](size_t j, int) { filled_[j] = fill(roots_[j], -1); });
         fill(0, kSplitDepth);
         roots_.clear();
         filled_.clear();
