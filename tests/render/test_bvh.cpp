@@ -319,16 +319,25 @@ TEST_CASE("R52 the BVH build does not depend on the thread count") {
     }
 }
 
-TEST_CASE("R52 the built tree and its wide form are the same, node for node, with 1, 2 and 3 threads") {
-    // Enough boxes for subtrees on other threads at several levels, clustered and of mixed
-    // sizes so that the splits are uneven.
-    Rng rng(5252);
+namespace {
+
+// `count` boxes clustered and of mixed sizes, so that the builder's splits are uneven.
+std::vector<Bounds3f> clustered_boxes(uint64_t seed, int count) {
+    Rng rng(seed);
     std::vector<Bounds3f> boxes;
-    for (int i = 0; i < 120000; ++i) {
+    for (int i = 0; i < count; ++i) {
         Vec3 c(rng.uniform(0, 100), rng.uniform(0, 30),
                i % 5 == 0 ? rng.uniform(0, 0.1) : rng.uniform(0, 60));
         boxes.push_back(Bounds3f::around(c, c + Vec3(rng.log_uniform(-3, 0.5))));
     }
+    return boxes;
+}
+
+}  // namespace
+
+TEST_CASE("R52 the built tree and its wide form are the same, node for node, with 1, 2 and 3 threads") {
+    // Enough boxes for subtrees on other threads at several levels.
+    const std::vector<Bounds3f> boxes = clustered_boxes(5252, 120000);
     const WideLeafFn merge_all = [](uint32_t, uint32_t) { return true; };
     auto tree = [&](int threads) {
         BvhOptions opt;
@@ -466,16 +475,9 @@ TEST_CASE("R52 a large mesh's bad faces are reported in face order, whatever the
 }
 
 TEST_CASE("R52 the wide form's collapse is the least-cost one it has always been") {
-    // Clustered boxes of mixed sizes; leaves may merge at some order positions and not others,
-    // so that the collapse weighs both kinds of lanes.
-    Rng rng(5353);
-    std::vector<Bounds3f> boxes;
-    for (int i = 0; i < 30000; ++i) {
-        Vec3 c(rng.uniform(0, 100), rng.uniform(0, 30),
-               i % 5 == 0 ? rng.uniform(0, 0.1) : rng.uniform(0, 60));
-        boxes.push_back(Bounds3f::around(c, c + Vec3(rng.log_uniform(-3, 0.5))));
-    }
-    const Bvh bvh = build_bvh(boxes, BvhOptions{});
+    // Leaves may merge at some order positions and not others, so that the collapse weighs both
+    // kinds of lanes.
+    const Bvh bvh = build_bvh(clustered_boxes(5353, 30000), BvhOptions{});
     const auto merged = to_bvh_wide(bvh.nodes, [](uint32_t first, uint32_t) { return first % 3 != 0; });
     const auto kept = to_bvh_wide(bvh.nodes);
     // Which subtrees become lanes and leaves, node for node, as the dynamic programme over the
