@@ -123,9 +123,13 @@ public:
             return in_range(t, i) || (bad_ = true, false);
         }
         const char* b = token.data();
-        if (*b == '+') ++b;  // from_chars takes no plus sign
-        auto [ptr, ec] = std::from_chars(b, token.data() + token.size(), out);
-        if (ec != std::errc() || ptr != token.data() + token.size()) return bad_ = true, false;
+        const char* end = token.data() + token.size();
+        if (*b == '+') {
+            ++b;  // from_chars takes no plus sign, and "+-1" is no number
+            if (b != end && *b == '-') return bad_ = true, false;
+        }
+        auto [ptr, ec] = std::from_chars(b, end, out);
+        if (ec != std::errc() || ptr != end) return bad_ = true, false;
         return true;
     }
     bool at_end() {
@@ -442,6 +446,8 @@ void PlyParser::assign_roles() {
 
 template <class Source>
 void PlyParser::element(Source& src, const Element& e, bool vertices, bool faces) {
+    // An element without properties has nothing to read, however many instances it declares.
+    if (e.properties.empty()) return;
     // Never reserve more than the remaining bytes could hold.
     const size_t room = (bytes_.size() - body_offset_) / (format_ == Format::Ascii ? 2 : e.min_bytes()) + 1;
     const size_t expected = static_cast<size_t>(std::min<uint64_t>(e.count, room));

@@ -178,6 +178,7 @@ TEST_CASE("PLY: malformed files are errors that say where", "[ply]") {
          "e.ply:3: the 'vertex' element needs properties x, y and z"},
         {head + "0 0 0\n1 0 0\n", "e.ply:12: the file ends in vertex 2 of 3"},
         {head + "0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n", "e.ply:11: 'zero' is not a valid number"},
+        {head + "+-1 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "e.ply:10: '+-1' is not a valid number"},
         {head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
          "e.ply:13: vertex index 3 out of range (the file has 3 vertices)"},
         {head + "0 0 0\n1 0 0\n0 1 0\n2 0 1\n", "e.ply:13: a face needs at least 3 vertices, this one has 2"},
@@ -200,6 +201,32 @@ TEST_CASE("PLY: malformed files are errors that say where", "[ply]") {
         CHECK(r.error == c.error);
     }
     CHECK(parse_ply("e.ply", head + body).mesh);
+    CHECK(parse_ply("e.ply", head + "+0 0 0\n+1 0 0\n0 +1 0\n3 0 1 2\n").mesh);
+}
+
+TEST_CASE("PLY: an element without properties is read as nothing, whatever its count", "[ply]") {
+    // Its instances hold no values: the reader must not step through them one by one (2^64 - 1
+    // of them would never end).
+    for (const char* format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+        INFO(format);
+        std::string text = "ply\nformat ";
+        text.append(format).append(
+            " 1.0\nelement junk 18446744073709551615\nelement vertex 3\nproperty float x\n"
+            "property float y\nproperty float z\nelement face 1\n"
+            "property list uchar int vertex_indices\nend_header\n");
+        if (std::string(format) == "ascii") {
+            text += "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        } else {
+            PlyWriter w{std::string(format) == "binary_big_endian" ? Enc::Big : Enc::Little, {}};
+            for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) w.f32(v);
+            w.u8(3), w.i32(0), w.i32(1), w.i32(2);
+            text += w.out;
+        }
+        const MeshFileResult r = parse_ply("e.ply", text);
+        INFO(r.error);
+        REQUIRE(r.mesh);
+        CHECK(r.mesh->faces.size() == 1);
+    }
 }
 
 TEST_CASE("PLY: a mesh reads the same from PLY and OBJ", "[ply]") {
