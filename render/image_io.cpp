@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "render/file_util.h"
+#include "render/image_check.h"
 #include "render/limits.h"
 #include "render/text_util.h"
 
@@ -236,6 +237,10 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
     if (file.size >= 2 && data[0] == 'P' && (data[1] == 'F' || data[1] == 'f')) {
         if (decode_pfm(file.view(), film, error) > 0) return true;
         error = "cannot read " + quoted(path) + ": " + error;
+        return false;
+    }
+    if (const std::string why = incomplete_image_data(data, file.size); !why.empty()) {
+        error = "cannot read " + quoted(path) + ": " + why;
         return false;
     }
     const int len = int(file.size);

@@ -8,12 +8,15 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <new>
+#include <vector>
 
+#include "render/image_check.h"
 #include "render/image_io.h"
 #include "render/texture.h"
 
@@ -78,8 +81,22 @@ std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& la
 
 // Decodes an already opened image file; `label` is the quoted path for messages.
 std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::string& error) {
+    std::vector<unsigned char> bytes;
+    unsigned char chunk[1 << 16];
+    for (size_t got; (got = std::fread(chunk, 1, sizeof chunk, f)) > 0;)
+        bytes.insert(bytes.end(), chunk, chunk + got);
+    if (std::ferror(f) || bytes.size() > size_t{INT_MAX}) {
+        error = "cannot read image " + label + (std::ferror(f) ? ": read error" : ": file too large");
+        return nullptr;
+    }
+    if (const std::string why = incomplete_image_data(bytes.data(), bytes.size()); !why.empty()) {
+        error = "cannot decode image " + label + ": " + why;
+        return nullptr;
+    }
+    const unsigned char* file = bytes.data();
+    const int len = static_cast<int>(bytes.size());
     int w = 0, h = 0, n = 0;
-    if (!stbi_info_from_file(f, &w, &h, &n)) {
+    if (!stbi_info_from_memory(file, len, &w, &h, &n)) {
         error = "cannot decode image " + label + ": " + stb_reason();
         return nullptr;
     }
@@ -100,16 +117,16 @@ std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::strin
         error = "cannot decode image " + label + ": " + stb_reason();
         return nullptr;
     };
-    if (stbi_is_hdr_from_file(f)) {
-        float* data = stbi_loadf_from_file(f, &w, &h, &n, 3);
+    if (stbi_is_hdr_from_memory(file, len)) {
+        float* data = stbi_loadf_from_memory(file, len, &w, &h, &n, 3);
         if (!data) return fail();
         const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
         image->rgb.assign(data, data + count);
         stbi_image_free(data);
         // RGBE cannot encode NaN, but keep the promise that texture values are finite and >= 0.
         keep_finite_non_negative(image->rgb);
-    } else if (stbi_is_16_bit_from_file(f)) {
-        stbi_us* data = stbi_load_from_file_16(f, &w, &h, &n, 3);
+    } else if (stbi_is_16_bit_from_memory(file, len)) {
+        stbi_us* data = stbi_load_16_from_memory(file, len, &w, &h, &n, 3);
         if (!data) return fail();
         const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
         image->rgb.resize(count);
@@ -117,7 +134,7 @@ std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::strin
             image->rgb[i] = static_cast<float>(srgb_curve(static_cast<double>(data[i]) / 65535.0));
         stbi_image_free(data);
     } else {
-        stbi_uc* data = stbi_load_from_file(f, &w, &h, &n, 3);
+        stbi_uc* data = stbi_load_from_memory(file, len, &w, &h, &n, 3);
         if (!data) return fail();
         const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
         const auto& table = srgb8_table();
@@ -149,6 +166,12 @@ float srgb8_to_linear(uint8_t v) {
 
 std::shared_ptr<const Image> load_image(const std::string& path, std::string& error) {
     const std::string label = "'" + path + "'";
+    // Checked before opening too: opening a FIFO blocks until something writes to it.
+    struct stat before {};
+    if (::stat(path.c_str(), &before) == 0 && !S_ISREG(before.st_mode)) {
+        error = "cannot read image " + label + ": not a regular file";
+        return nullptr;
+    }
     FilePtr file(std::fopen(path.c_str(), "rb"));
     if (!file) {
         error = "cannot open image " + label + ": " + std::strerror(errno);

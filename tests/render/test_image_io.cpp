@@ -213,3 +213,34 @@ TEST_CASE("decode_pfm says where the pixel data ends, and encode_pfm is what wri
     CHECK(wsd::render::decode_pfm(bytes.substr(0, bytes.size() - 1), back, error) == 0);
     CHECK(error.find("truncated") != std::string::npos);
 }
+
+TEST_CASE("truncated HDR, BMP and TGA files are errors, not black pixels or a hang", "[image_io]") {
+    // stb_image loops forever on a Radiance file cut inside its run-length data, and fills
+    // the missing rows of a BMP or TGA with zeros: read_image checks the data first.
+    TempDir dir;
+    const Film film = gradient(40, 9, 0.0f, 2.0f);  // 40 wide: HDR rows are run-length encoded
+    for (const char* name : {"a.hdr", "a.bmp", "a.tga"}) {
+        INFO(name);
+        std::string error;
+        REQUIRE(write_image(dir.file(name), film, error));
+        std::ifstream in(dir.file(name), std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        Film back;
+        REQUIRE(read_image(dir.file(name), back, error));  // whole: read as before
+        for (size_t cut : {bytes.size() - 1, bytes.size() * 3 / 4, bytes.size() / 2}) {
+            INFO("cut to " << cut << " of " << bytes.size() << " bytes");
+            write_bytes(dir.file("cut"), bytes.substr(0, cut));
+            error.clear();
+            CHECK_FALSE(read_image(dir.file("cut"), back, error));
+            CHECK(error.find("the file ends before its last pixel") != std::string::npos);
+        }
+    }
+    // A literal run of length 0 in an HDR scanline (a corrupt but full-length file).
+    std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
+    hdr += std::string("\x02\x02\x00\x08", 4) + std::string(64, '\0');
+    write_bytes(dir.file("zero.hdr"), hdr);
+    Film back;
+    std::string error;
+    CHECK_FALSE(read_image(dir.file("zero.hdr"), back, error));
+    CHECK(error.find("a run of length 0") != std::string::npos);
+}
