@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "app/io_util.h"
 #include "render/image_io.h"
@@ -149,6 +150,34 @@ std::string encode_tile(const render::Film& film, const render::AovFilm& aovs, c
     return out;
 }
 
+namespace {
+
+// The deepest nesting of arrays and objects in the JSON text (strings skipped): the metadata is
+// two levels deep, and nlohmann-json copies nested values recursively, so a hostile file with
+// thousands of levels would overflow the stack.
+size_t json_depth(std::string_view text) {
+    size_t depth = 0, deepest = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+}  // namespace
+
 bool decode_tile(const std::string& bytes, render::Film& film, render::AovFilm& aovs, TileMeta& meta,
                  std::string& error) {
     if (bytes.rfind("PF", 0) != 0) {
@@ -165,6 +194,10 @@ bool decode_tile(const std::string& bytes, render::Film& film, render::AovFilm& 
     // The trailer is one line (the JSON is written without newlines); auxiliary images follow it.
     const size_t json_start = tag + std::strlen(trailer_tag);
     const size_t line_end = std::min(bytes.find('\n', json_start), bytes.size());
+    if (json_depth(std::string_view(bytes).substr(json_start, line_end - json_start)) > 16) {
+        error = "malformed WSDTILE metadata (nested too deep)";
+        return false;
+    }
     const Json fields = Json::parse(bytes.begin() + std::ptrdiff_t(json_start),
                                     bytes.begin() + std::ptrdiff_t(line_end), nullptr, false);
     if (fields.is_discarded()) {

@@ -186,6 +186,14 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
     REQUIRE(run_wsd(dir, "render s.wsd --quiet --tile 2/4 --supersamples 1 -o cheap.pfm").status == 0);
     REQUIRE(run_wsd(dir, "render s.wsd --quiet --region 0,2,16,6 -o overlap.pfm").status == 0);
     write_file(dir / "junk.pfm", "PF\n16 4\n-1.0\nshort");
+    {
+        // A valid tile whose metadata holds a value nested 100,000 deep: an error, not a crash.
+        std::string tile = read_file(dir / "t2.pfm");
+        const size_t at = tile.find("\"seed\":");
+        REQUIRE(at != std::string::npos);
+        tile.insert(at, "\"x\":" + std::string(100000, '[') + std::string(100000, ']') + ",");
+        write_file(dir / "deep.pfm", tile);
+    }
 
     struct Case {
         const char* tiles;
@@ -200,6 +208,7 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
         {"t1.pfm seeded.pfm t3.pfm t4.pfm", "seeded.pfm", "seed"},
         {"t1.pfm cheap.pfm t3.pfm t4.pfm", "cheap.pfm", "settings"},
         {"t1.pfm t2.pfm t3.pfm t4.pfm junk.pfm", "junk.pfm", "malformed"},
+        {"t1.pfm deep.pfm t3.pfm t4.pfm", "deep.pfm", "nested too deep"},
     };
     for (const Case& c : cases) {
         INFO(c.what);
