@@ -379,6 +379,8 @@ int run_render(const RenderArgs& args) {
         const std::string stats_path = plan.animated ? frame_path(args.stats_json, frame) : args.stats_json;
         if (!stats_path.empty() && !output_directory_exists(stats_path, error))
             return fail(exit_code::io, error);
+        if (!stats_path.empty() && same_path(stats_path, output))
+            return fail(exit_code::usage, "--stats-json names the image's own output '" + output + "'");
     }
     RenderRun run;
     if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);

@@ -66,7 +66,17 @@ bool output_directory_exists(const std::string& path, std::string& error) {
         error = "cannot write '" + path + "': directory '" + dir.string() + "' is not writable";
         return false;
     }
+    if (fs::is_directory(path, ec)) {
+        error = "cannot write '" + path + "': it is a directory";
+        return false;
+    }
     return true;
+}
+
+bool same_path(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::absolute(a, ec).lexically_normal() == fs::absolute(b, ec).lexically_normal()) return true;
+    return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
 }
 
 bool write_file_atomic(const std::string& path, std::string_view data, std::string& error) {

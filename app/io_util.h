@@ -15,8 +15,13 @@ bool read_input_file(const std::string& path, std::string& text, std::string& er
 // True when `path` names an existing regular file we can open for reading.
 bool can_open_for_reading(const std::string& path, std::string& error);
 
-// False + message when the directory that would hold `path` does not exist (it is never created).
+// False + message when the directory that would hold `path` does not exist (it is never created),
+// is not writable, or `path` itself is a directory.
 bool output_directory_exists(const std::string& path, std::string& error);
+
+// Whether two paths name the same file: the same once made absolute and normal, or, when both
+// exist, the same file (links).
+bool same_path(const std::string& a, const std::string& b);
 
 // Writes `data` to a temporary file next to `path`, then renames it over `path`. On failure
 // nothing is left behind.

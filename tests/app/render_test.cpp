@@ -90,6 +90,20 @@ TEST_CASE("--stats-json writes the named keys", "[render]") {
     CHECK(json.find("\"peak_memory_bytes\": 0,") == std::string::npos);
 }
 
+TEST_CASE("--stats-json that would overwrite the image, or names a directory, fails before rendering",
+          "[render]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    fs::create_directory(dir / "d.json");
+    RunResult r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json ./a.png");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--stats-json names the image's own output") != std::string::npos);
+    r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json d.json");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("it is a directory") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "a.png"));
+}
+
 TEST_CASE("--stats-json is valid JSON even for a scene path that is not UTF-8", "[render]") {
     TempDir dir;
     write_file(dir / "caf\xe9 \"1\".wsd", tiny_scene());  // Latin-1 é and quotes
