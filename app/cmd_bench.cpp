@@ -69,12 +69,13 @@ int run_setting(const std::string& path, const std::string& text, const SceneOve
     lang::LoadOptions load_options;
     load_options.params = &params;
     load_options.threads = args.threads;
+    load_options.cancel = signals.flag();
     load_options.adjust = [&](render::SceneSpec& spec) { overrides.apply(spec); };
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
     const double cpu0_load = cpu_seconds_now();
     if (const int s = load_scene_text(path, text, load_options, sources, loaded, false); s != exit_code::ok)
-        return s;
+        return signals.cancelled() ? signals.exit_status() : s;
     const double cpu1 = cpu_seconds_now();
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
     // Caustic photons are shot while the scene is built, once for every repeat: their time is

@@ -196,6 +196,7 @@ int load_for_render(const RenderArgs& args, RenderRun& run, const lang::Animatio
     load_options.images = &run.images;
     load_options.use_bvh = !args.no_bvh;
     load_options.threads = args.threads;
+    load_options.cancel = run.signals.flag();
     load_options.adjust = [&](render::SceneSpec& spec) {
         args.overrides.apply(spec);
         // A size that only the command line makes too large is a usage error, not the scene's;
@@ -294,8 +295,11 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, run, job.time, sources, loaded); status != exit_code::ok)
-        return status;
+    if (const int status = load_for_render(args, run, job.time, sources, loaded); status != exit_code::ok) {
+        if (!signals.cancelled()) return status;
+        std::cerr << "wsd: interrupted; no image written\n";
+        return signals.exit_status();
+    }
     const render::Settings& settings = loaded->spec.settings;
     if (!resolve_region(tile, settings, error)) return fail(exit_code::usage, error);
 

@@ -91,6 +91,7 @@ int load_scene_text(const std::string& path, const std::string& text, const lang
         scene.reset();
         return exit_code::input_error;
     }
+    if (!scene && options.cancel && options.cancel->load()) return exit_code::sigint;  // the caller says so
     if (!scene) return fail(exit_code::input_error, display_path(path) + ": the scene could not be loaded");
     return exit_code::ok;
 }

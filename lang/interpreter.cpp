@@ -152,6 +152,7 @@ bool Interpreter::take_iterations(double count, Span at) {
 // One iteration in a fresh scope; false stops the loop (after an error, so that a broken body is
 // reported once rather than once per iteration).
 bool Interpreter::run_loop_body(const ForStmt& stmt, const Value& item) {
+    if (cancel_now()) return false;
     const size_t errors_before = diags_.error_count();
     push_scope();
     bind(stmt.name, stmt.name_span, item);

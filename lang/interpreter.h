@@ -6,6 +6,7 @@
 // past independent errors and stops at limits, failed includes and "too many errors".
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -56,6 +57,10 @@ public:
     void set_file_reader(const IncludeReader* reader) { reader_ = reader; }
     // The values of the built-in constants `clock` and `frame` (a still's 0 and 0 by default).
     void set_time(const AnimationTime& time) { time_ = time; }
+    // A flag that stops the run at the next loop iteration or call once it holds true (a signal
+    // during a long evaluation); cancelled() then says so. Nothing is reported.
+    void set_cancel(const std::atomic<bool>* flag) { cancel_ = flag; }
+    bool cancelled() const { return cancelled_; }
     // Evaluates one expression in the current (top) scope.
     std::optional<Value> evaluate(const Expr& expr);
     // A binding of the file's top scope (for tests); nullopt if absent or failed.
@@ -163,6 +168,13 @@ private:
     // `default_material`: whether to look up that binding (for an object that may need it).
     BlockContext context(bool default_material = false);
     void abort() { aborted_ = true; }
+    // True, having stopped the run, when the cancel flag holds true.
+    bool cancel_now() {
+        if (cancel_ == nullptr || !cancel_->load(std::memory_order_relaxed)) return false;
+        cancelled_ = true;
+        abort();
+        return true;
+    }
     bool stopped() const { return aborted_ || diags_.too_many(); }
 
     SourceManager& sources_;
@@ -179,6 +191,8 @@ private:
     int depth_ = 0;
     uint64_t iterations_ = 0;
     bool aborted_ = false;
+    const std::atomic<bool>* cancel_ = nullptr;
+    bool cancelled_ = false;
     std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
     // Where object statements deliver: the members of the group or CSG body being evaluated
     // (body_ names its kind), or the scene (null).

@@ -2,6 +2,7 @@
 // any stage that reported errors. This is what `wsd check` and `wsd render` run.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -38,6 +39,9 @@ struct LoadOptions {
     AnimationTime time;                              // `clock` and `frame` (0 and 0: a still)
     render::ImageCache* images = nullptr;            // texture images kept across loads (frames)
     IncludeReader read_include;                      // empty: included files are read from disk
+    // Set: the evaluation stops at the next loop iteration or call once it holds true (a signal),
+    // and load_scene returns no scene and reports nothing.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 struct LoadedScene {

@@ -3,6 +3,7 @@
 // exactly the single render, with every merge error naming the tile at fault.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -155,6 +156,18 @@ TEST_CASE("SIGINT and SIGTERM stop the render with 130 and 143 and write nothing
                 "timeout --preserve-status -s TERM 1");
     CHECK(r.status == 143);
     CHECK(list_files(dir) == std::vector<std::string>{"slow.wsd"});
+
+    // While the scene is still being evaluated (a loop of 10^8 steps takes far longer than the
+    // timeout): the evaluation stops at the next iteration.
+    write_file(dir / "loop.wsd", tiny_scene() + "for i in 0 .. 99000000 { let a = i * 2 }\n");
+    const auto start = std::chrono::steady_clock::now();
+    r = run_wsd(dir, "render loop.wsd -o out.png --quiet", "timeout --preserve-status -s TERM 1");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    CHECK(r.status == 143);
+    CHECK(r.err.find("interrupted; no image written") != std::string::npos);
+    // Not a speed measurement: without the check the loop runs to its end, 10 s or more.
+    CHECK(seconds < 6);
+    CHECK_FALSE(fs::exists(dir / "out.png"));
 }
 
 TEST_CASE("four tiles merge into exactly the single render", "[tiles]") {
