@@ -3,6 +3,7 @@
 #include "app/scene_setup.h"
 
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "app/exit_codes.h"
@@ -83,7 +84,16 @@ int load_scene_text(const std::string& path, const std::string& text, const lang
                     lang::SourceManager& sources, std::optional<lang::LoadedScene>& scene, bool warnings,
                     std::set<std::string>* shown) {
     lang::Diagnostics diags;
-    scene = lang::load_scene(display_path(path), text, sources, diags, options);
+    try {
+        scene = lang::load_scene(display_path(path), text, sources, diags, options);
+    } catch (const std::bad_alloc&) {
+        // The scene's own size (a nest of instance groups, say), not a bug: what memory_budget
+        // checks before building can only be counted once the scene has been evaluated.
+        scene.reset();
+        return fail(exit_code::input_error, display_path(path) +
+                                                ": out of memory while loading the scene (it needs more "
+                                                "memory than this process may use)");
+    }
     if (!warnings) diags = errors_only(diags);
     if (shown && !diags.has_errors()) diags = without_shown(diags, *shown);
     if (!diags.all().empty()) std::cerr << lang::format_diagnostics(diags, sources);
