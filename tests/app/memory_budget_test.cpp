@@ -4,7 +4,9 @@
 #include "render/memory_budget.h"
 
 #include <catch2/catch.hpp>
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 
 #include "app_test_util.h"
 
@@ -72,4 +74,26 @@ TEST_CASE("a scene bigger than the memory it may use is refused before it is bui
     INFO(fits.err);
     CHECK(fits.status == 0);
     CHECK(fs::exists(dir.path() / "s.png"));
+}
+
+TEST_CASE("running out of memory while the scene is evaluated is a scene error, not a crash",
+          "[memory][e2e]") {
+    // 2^24 instances through nested groups: expanded while the scene is evaluated, before the
+    // memory estimate can count them. Under a 1.5 GB address-space limit the expansion fails.
+    if (const char* s = std::getenv("WSD_SANITIZED"); s && std::string(s) == "1") {
+        WARN("skipped: WSD_SANITIZED=1 (the sanitizers reserve more address space than the limit)");
+        return;
+    }
+    TempDir dir;
+    write_file(
+        dir / "nest.wsd",
+        "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
+        "let t = mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>]  faces [<0, 1, 2>]  material { } }\n"
+        "let a = group { for i in 0 .. 4096 { object t { translate <i, 0, 0> } } }\n"
+        "let b = group { for j in 0 .. 4096 { object a { translate <0, j, 0> } } }\n"
+        "object b { }\n");
+    const RunResult r = run_wsd(dir, "check nest.wsd", "ulimit -v 1500000;");
+    INFO(r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("nest.wsd: out of memory while loading the scene") != std::string::npos);
 }
