@@ -350,6 +350,12 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
                   << std::flush;
     if (!args.quiet && !tile_file) std::cerr << aov_note(output, aovs);
     if (!args.quiet) std::cerr << progressive_note(args, result.progressive);
+    if (const uint64_t n = result.stats.nonfinite_samples; n > 0)
+        // Shown even with --quiet: the image is not what the scene describes there.
+        std::cerr << "wsd: warning: " << n << (n == 1 ? " sample was" : " samples were")
+                  << " not finite or too large for single precision (an overflow such as ambient × "
+                     "colour, or emission, beyond 3.4e38) and "
+                  << (n == 1 ? "was" : "were") << " written as black\n";
 
     if (args.stats || !stats_path.empty()) return report_stats(args, stats_path, *loaded, result);
     return exit_code::ok;

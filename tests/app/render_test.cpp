@@ -105,6 +105,22 @@ TEST_CASE("--stats-json that would overwrite the image, or names a directory, fa
     CHECK_FALSE(fs::exists(dir / "a.png"));
 }
 
+TEST_CASE("samples that overflow single precision are named in a warning, even with --quiet", "[render]") {
+    TempDir dir;
+    // Each value fits a float; their product (ambient × colour) does not.
+    write_file(
+        dir / "o.wsd",
+        "settings { width 8  height 8  ambient 1e20 }\ncamera { position <0, 0, -2>  look_at <0, 0, 0> }\n"
+        "sphere { center <0, 0, 0>  radius 1  material { color <1e20, 1e20, 1e20> } }\n");
+    RunResult r = run_wsd(dir, "render o.wsd -o o.pfm --quiet");
+    CHECK(r.status == 0);
+    CHECK(r.err.find("samples were not finite or too large for single precision") != std::string::npos);
+    write_file(dir / "fine.wsd", tiny_scene());
+    r = run_wsd(dir, "render fine.wsd -o f.pfm --quiet");
+    CHECK(r.status == 0);
+    CHECK(r.err.find("not finite") == std::string::npos);
+}
+
 TEST_CASE("--stats-json is valid JSON even for a scene path that is not UTF-8", "[render]") {
     TempDir dir;
     write_file(dir / "caf\xe9 \"1\".wsd", tiny_scene());  // Latin-1 é and quotes
