@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app/exr_io.h"
 #include "app/io_util.h"
@@ -158,9 +160,20 @@ bool write_image_with_aovs(const std::string& path, const render::Film& film, co
         return false;
     }
     if (is_exr_path(path)) return write_exr(path, film, aovs, selection, error);
-    for (const std::string& name : selection.names())
-        if (!write_file_atomic(aov_sibling_path(path, name), aov_pfm(film, aovs, name), error)) return false;
-    return render::write_image(path, film, error);
+    // Each file is written whole or not at all; when one fails, those written before it go too,
+    // so that a failed run leaves no part of its output.
+    std::vector<std::string> written;
+    const auto undo = [&] {
+        std::error_code ec;
+        for (const std::string& done : written) std::filesystem::remove(done, ec);
+        return false;
+    };
+    for (const std::string& name : selection.names()) {
+        const std::string sibling = aov_sibling_path(path, name);
+        if (!write_file_atomic(sibling, aov_pfm(film, aovs, name), error)) return undo();
+        written.push_back(sibling);
+    }
+    return render::write_image(path, film, error) || undo();
 }
 
 bool write_image_file(const std::string& path, const render::Film& film, std::string& error) {

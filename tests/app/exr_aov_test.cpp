@@ -210,6 +210,17 @@ TEST_CASE("AOVs with another format are sibling PFM files equal to the EXR layer
     CHECK(read_file(dir / "plain.pfm") == read_file(dir / "s.pfm"));
 }
 
+TEST_CASE("when one AOV file cannot be written, the run leaves none of its files", "[exr][aov]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", kWallScene);
+    fs::create_directory(dir / "out.normal.pfm");  // in the way of the second sibling
+    const RunResult r = run_wsd(dir, "render s.wsd -q -o out.png --aov albedo,normal");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("out.normal.pfm") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "out.albedo.pfm"));  // written first, then removed
+    CHECK_FALSE(fs::exists(dir / "out.png"));
+}
+
 TEST_CASE("misses give albedo and normal 0 and depth +inf", "[exr][aov]") {
     TempDir dir;
     write_file(dir / "s.wsd",
