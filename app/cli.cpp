@@ -21,6 +21,10 @@ namespace {
 
 // A whole decimal integer between lo and hi. CLI11's Range would call "abc" out of range; a
 // value that is not an integer at all deserves its own message.
+// An option whose value may not be empty: `-o ""` is a mistake, not the option left out.
+const CLI::Validator non_empty(
+    [](std::string& text) -> std::string { return text.empty() ? "an empty value" : ""; }, "TEXT");
+
 CLI::Validator integer_in(long long lo, long long hi) {
     const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
     return CLI::Validator(
@@ -160,7 +164,8 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     CLI::App* cmd = app.add_subcommand("render", "render an image");
     cmd->add_option("SCENE", args.scene, "scene file; - = stdin")->required();
     cmd->add_option("-o,--output", args.output,
-                    "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm .exr); default ./NAME.png");
+                    "output image (.png .jpg .jpeg .bmp .tga .hdr .pfm .exr); default ./NAME.png")
+        ->check(non_empty);
     refs.add(*cmd);
     add_scene_input(*cmd, args.input);
     cmd->add_option("--threads", args.threads, "render threads; 0 = all cores")->check(integer_in(0, 4096));
@@ -168,11 +173,12 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--general", args.general,
                   "use the general integrator with every effect enabled (same image, slower; for checking)");
     cmd->add_flag("--stats", args.stats, "print render statistics at the end");
-    cmd->add_option("--stats-json", args.stats_json, "write render statistics as JSON");
+    cmd->add_option("--stats-json", args.stats_json, "write render statistics as JSON")->check(non_empty);
     cmd->add_flag("-q,--quiet", args.quiet, "no progress output");
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
-    cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile");
-    cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)");
+    cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile")
+        ->check(non_empty);
+    cmd->add_option("--region", args.region, "render the pixels x0,y0,x1,y1 (half-open)")->check(non_empty);
     cmd->add_option("--target-error", args.target_error,
                     "E: progressive passes until every pixel's estimated display-space error is at most E")
         ->check(positive_number(1e9, "1e9"));
@@ -190,7 +196,8 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
             },
             "LIST"));
     cmd->add_option("--frames", args.frames,
-                    "A-B: render frames A to B, clock going from 0 to 1; '#'s in -o become the frame number");
+                    "A-B: render frames A to B, clock going from 0 to 1; '#'s in -o become the frame number")
+        ->check(non_empty);
     cmd->add_option("--frame", args.frame, "N: render only frame N of --frames (a farm's task)")
         ->check(integer_in(0, max_frame_number));
     cmd->add_option("--clock", args.clock, "X: the value of clock in a still (default 0)");
@@ -201,7 +208,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
     CLI::App* cmd = app.add_subcommand("bench", "measure error against time for each setting");
     cmd->add_option("SCENE", args.scene, "scene file")->required();
     add_scene_input(*cmd, args.input);
-    cmd->add_option("-o,--output", args.dir, "directory for bench.csv, bench.md, bench.svg (default .)");
+    cmd->add_option("-o,--output", args.dir, "directory for bench.csv, bench.md, bench.svg (default .)")
+        ->check(non_empty);
     cmd->add_option("--repeat", args.repeat,
                     "runs per setting; the median is reported (default 3, or 1 with --quick)")
         ->check(integer_in(1, 1000));
@@ -265,12 +273,13 @@ int run_cli(int argc, char** argv) {
     CLI::App* diff = app.add_subcommand("diff", "compare two images (RMSE, PSNR, max error, SSIM)");
     diff->add_option("A", diff_args.a, "first image")->required();
     diff->add_option("B", diff_args.b, "second image")->required();
-    diff->add_option("-o,--output", diff_args.heatmap, "write a heat map of the per-pixel error");
+    diff->add_option("-o,--output", diff_args.heatmap, "write a heat map of the per-pixel error")
+        ->check(non_empty);
 
     MergeArgs merge_args;
     CLI::App* merge = app.add_subcommand("merge", "assemble tiles rendered with --tile or --region");
     merge->add_option("TILE", merge_args.tiles, "tile files (.pfm)")->required();
-    merge->add_option("-o,--output", merge_args.output, "output image")->required();
+    merge->add_option("-o,--output", merge_args.output, "output image")->required()->check(non_empty);
 
     BenchArgs bench_args;
     CLI::App* bench = add_bench_command(app, bench_args);

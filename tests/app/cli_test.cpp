@@ -46,6 +46,15 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
     CHECK(ext.err.find("out.xyz") != std::string::npos);
     CHECK(run_wsd(dir, "merge a.pfm").status == 2);  // -o is required
     CHECK(run_wsd(dir, "diff a.png").status == 2);
+    // An empty value is a mistake, not the option left out.
+    for (const char* option : {"-o", "--tile", "--region", "--stats-json", "--frames"}) {
+        INFO(option);
+        const RunResult empty = run_wsd(dir, std::string("render s.wsd --quiet ") + option + " ''");
+        CHECK(empty.status == 2);
+        CHECK(empty.err.find("an empty value") != std::string::npos);
+    }
+    CHECK(run_wsd(dir, "merge a.pfm -o ''").status == 2);
+    CHECK(run_wsd(dir, "bench s.wsd -o ''").status == 2);
     // Nothing was written by any of them.
     const auto files = list_files(dir);
     CHECK(files == std::vector<std::string>{"s.wsd"});
