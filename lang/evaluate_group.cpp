@@ -6,6 +6,7 @@
 
 #include "lang/interpreter.h"
 #include "lang/object_value.h"
+#include "render/memory_budget.h"
 #include "render/mesh_topology.h"
 
 namespace wsd::lang {
@@ -230,6 +231,21 @@ ObjectPtr Interpreter::instance_value(const InstanceStmt& stmt) {
     return value;
 }
 
+bool Interpreter::instances_fit(size_t instances, Span added_by) {
+    // Each instance is a ShapeSpec while the scene loads (about 520 bytes); what the build adds
+    // afterwards is estimated, and checked, once the scene is complete (render/memory_budget.h).
+    const render::MemoryAvailable available = render::available_memory();
+    if (!available.error.empty() || !available.bytes) return true;  // reported, or unknown
+    const size_t need = instances * sizeof(render::ShapeSpec);
+    if (need <= *available.bytes) return true;
+    Diagnostic& d =
+        diags_.error(added_by, "the scene's " + std::to_string(instances) + " instances need about " +
+                                   render::memory_text(need) + " while it loads, more than the " +
+                                   render::memory_text(*available.bytes) + " of " + available.source);
+    d.help.push_back("instances of groups of instances multiply: each level's count is a factor");
+    return false;
+}
+
 void Interpreter::deliver(const ObjectPtr& value, Span added_by) {
     if (members_) {
         members_->push_back(value);
@@ -239,6 +255,10 @@ void Interpreter::deliver(const ObjectPtr& value, Span added_by) {
     // exponentially many in a few steps).
     SceneBuilder::Expansion grows = scene_.expansion(value);
     grows += {scene_.instances(), scene_.primitives()};
+    if (grows.instances >= next_memory_check_ && grows.instances <= limits_.instances) {
+        while (next_memory_check_ <= grows.instances) next_memory_check_ *= 2;
+        if (!instances_fit(grows.instances, added_by)) return abort();
+    }
     if (grows.instances <= limits_.instances && grows.copies <= limits_.primitives)
         scene_.add_object_value(value, added_by, diags_);
     if (scene_.primitives() > limits_.primitives || grows.copies > limits_.primitives) {

@@ -157,6 +157,9 @@ private:
     std::optional<Value> eval_object(const ObjectExpr& expr);
     // Adds a value where objects go now: the body being evaluated, or the scene.
     void deliver(const ObjectPtr& value, Span added_by);
+    // Whether `instances` instance shapes can be held while the scene loads (checked when the
+    // count first passes each doubling from 65,536), else an error at added_by.
+    bool instances_fit(size_t instances, Span added_by);
     std::string_view keyword_text(const Stmt& s) const;
 
     // A block's items evaluated in order and checked against `table` as they are.
@@ -192,6 +195,7 @@ private:
     uint64_t iterations_ = 0;
     bool aborted_ = false;
     const std::atomic<bool>* cancel_ = nullptr;
+    size_t next_memory_check_ = size_t{1} << 16;  // instances
     bool cancelled_ = false;
     std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
     // Where object statements deliver: the members of the group or CSG body being evaluated

@@ -97,3 +97,22 @@ TEST_CASE("running out of memory while the scene is evaluated is a scene error, 
     CHECK(r.status == 1);
     CHECK(r.err.find("nest.wsd: out of memory while loading the scene") != std::string::npos);
 }
+
+TEST_CASE("instances that cannot be held while the scene loads are refused before they are made",
+          "[memory][e2e]") {
+    // 2^24 instances (8 GiB of shape records) against a 1 GiB budget: refused at the object
+    // statement that adds them, before any is made.
+    TempDir dir;
+    write_file(
+        dir / "nest.wsd",
+        "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
+        "let t = mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>]  faces [<0, 1, 2>]  material { } }\n"
+        "let a = group { for i in 0 .. 4096 { object t { translate <i, 0, 0> } } }\n"
+        "let b = group { for j in 0 .. 4096 { object a { translate <0, j, 0> } } }\n"
+        "object b { }\n");
+    const RunResult r = run_wsd(dir, "check nest.wsd", "WSD_MAX_MEMORY=1G");
+    INFO(r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("nest.wsd:6:1: error: the scene's 16777216 instances need about") != std::string::npos);
+    CHECK(r.err.find("of WSD_MAX_MEMORY") != std::string::npos);
+}
