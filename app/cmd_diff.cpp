@@ -1,6 +1,7 @@
 // `wsd diff A B [-o HEATMAP]`: compares two images on display values (sRGB-encoded, clamped) and
 // prints RMSE, PSNR, the largest absolute error and SSIM. A file that cannot be opened is an I/O
 // error (3); one that opens but does not decode, or two sizes that differ, are input errors (1).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -27,6 +28,11 @@ int read_display(const std::string& path, DisplayImage& image) {
     render::Film film;
     if (!read_image_file(path, film, error))
         return fail(exit_code::input_error, "cannot read image '" + path + "': " + error);
+    const auto nonfinite =
+        std::count_if(film.rgb.begin(), film.rgb.end(), [](float v) { return !std::isfinite(v); });
+    if (nonfinite > 0)
+        std::cerr << "wsd: note: '" << path << "' holds " << nonfinite
+                  << " values that are not finite: NaN and -inf are compared as black, +inf as white\n";
     image = to_display(film, is_8bit(render::format_from_extension(path)));
     return exit_code::ok;
 }

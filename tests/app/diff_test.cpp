@@ -79,3 +79,20 @@ TEST_CASE("diff failures: sizes 1, malformed 1, missing 3, bad heat map name 2",
     CHECK(run_wsd(dir, "diff a.tga a.tga -o heat.xyz").status == 2);
     CHECK(run_wsd(dir, "diff a.tga a.tga -o no/dir/heat.png").status == 3);
 }
+
+TEST_CASE("diff notes the values of an image that are not finite, and how it compares them", "[diff]") {
+    TempDir dir;
+    // A 2×1 PFM (little-endian): one pixel NaN, one black.
+    std::string pfm = "PF\n2 1\n-1.0\n";
+    const float values[6] = {std::nanf(""), std::nanf(""), std::nanf(""), 0, 0, 0};
+    pfm.append(reinterpret_cast<const char*>(values), sizeof values);
+    write_file(dir / "nan.pfm", pfm);
+    const float zeros[6] = {};
+    write_file(dir / "zero.pfm",
+               "PF\n2 1\n-1.0\n" + std::string(reinterpret_cast<const char*>(zeros), sizeof zeros));
+    const RunResult r = run_wsd(dir, "diff nan.pfm zero.pfm");
+    CHECK(r.status == 0);
+    CHECK(r.err.find("'nan.pfm' holds 3 values that are not finite: NaN and -inf are compared as black") !=
+          std::string::npos);
+    CHECK(r.err.find("zero.pfm") == std::string::npos);
+}
