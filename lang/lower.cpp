@@ -135,6 +135,8 @@ std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
     if (!fallback.value) {
         Diagnostic& d = ctx.diags.error(r.keyword(), "missing property 'material' in " + r.table().what);
         d.help.push_back("add 'material { ... }' or 'let default_material = material { ... }'");
+        if (ctx.call)
+            d.notes.push_back({*ctx.call, "added by this call, and nothing enclosing it gives a material"});
         return std::nullopt;
     }
     const std::optional<Value>& v = *fallback.value;
@@ -143,6 +145,8 @@ std::optional<MaterialPtr> object_material(BlockReader& r, BlockContext& ctx) {
         Diagnostic& d = ctx.diags.error(
             r.keyword(), std::string("'default_material' is a ") + type_name(v->type()) + ", not a material");
         d.notes.push_back({fallback.defined_at, "'default_material' is defined here"});
+        if (ctx.call)
+            d.notes.push_back({*ctx.call, "added by this call, and nothing enclosing it gives a material"});
         return std::nullopt;
     }
     return v->material();

@@ -65,6 +65,9 @@ struct BlockContext {
     // An object written as a value or in a group or CSG body may take its material from what
     // encloses it: without one of its own it lowers with a null material instead of an error.
     bool material_optional = false;
+    // The outermost user-function call running, when there is one: an object that lacks a
+    // material names it as what added the object.
+    std::optional<Span> call = std::nullopt;
 };
 
 struct LoweredObject {
