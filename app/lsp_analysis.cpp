@@ -33,12 +33,15 @@ int severity_code(Severity s) {
     return 1;
 }
 
-json related(const SourceManager& sources, Span span, const std::string& message, Encoding enc) {
+// File 0 is the document itself, named by its own URI (which need not be a file: an editor's
+// untitled buffer).
+json related(const SourceManager& sources, const std::string& document_uri, Span span,
+             const std::string& message, Encoding enc) {
     const SourceFile& f = sources.file(span.file);
     const LineIndex index(f.text);
-    return {
-        {"location", {{"uri", path_to_uri(f.path)}, {"range", range_json(index, span.begin, span.end, enc)}}},
-        {"message", message}};
+    const std::string uri = span.file == 0 ? document_uri : path_to_uri(f.path);
+    return {{"location", {{"uri", uri}, {"range", range_json(index, span.begin, span.end, enc)}}},
+            {"message", message}};
 }
 
 json symbol(std::string name, int kind, const LineIndex& index, Span range, Span selection, Encoding enc) {
@@ -177,7 +180,7 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text)
         json info = json::array();
         if (at.file != 0 && at.file < sources.size()) {
             // Shown at the document's outermost include that led there; the chain in the message.
-            info.push_back(related(sources, at, d.message, enc));
+            info.push_back(related(sources, doc.uri, at, d.message, enc));
             message = "in " + where(sources, at) + ": " + d.message;
             Span site{0, 0, 0};
             for (const Span& inc : d.include_chain) {
@@ -187,7 +190,8 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text)
             at = site;
         }
         for (const Note& n : d.notes)
-            if (n.span.file < sources.size()) info.push_back(related(sources, n.span, n.message, enc));
+            if (n.span.file < sources.size())
+                info.push_back(related(sources, doc.uri, n.span, n.message, enc));
         for (const std::string& h : d.help) message += "\nhelp: " + h;
         json diag = {{"range", range_json(index, at.begin, at.end, enc)},
                      {"severity", severity_code(d.severity)},

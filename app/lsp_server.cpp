@@ -150,6 +150,8 @@ void Server::notification(const std::string& method, const json& params) {
         changed(document(params).uri);
     } else if (method == "textDocument/didClose") {
         const std::string uri = params.at("textDocument").at("uri").get<std::string>();
+        // Documents that include it read the file on disk from now on: they are checked again.
+        changed(uri);
         documents_.erase(uri);
         pending_.erase(uri);
         // Clear what was shown for it.
@@ -161,6 +163,7 @@ void Server::notification(const std::string& method, const json& params) {
 }
 
 json Server::request(const std::string& method, const json& params) {
+    if (shut_down_) throw RpcError{kInvalidRequest, "the server is shut down"};
     if (method == "initialize") {
         const json* encodings = nullptr;
         if (params.is_object() && params.contains("capabilities")) {

@@ -212,6 +212,7 @@ const ParsedFile* Workspace::included(const ParsedFile& from, const IncludeStmt&
 }
 
 void Workspace::add_file_top_level(const ParsedFile& file, std::vector<Definition>& out, int depth) {
+    if (!added_.insert(&file).second) return;
     visible_in(file, file.program.statements, UINT32_MAX, true, out, depth);
 }
 
@@ -274,6 +275,7 @@ void Workspace::visible_in(const ParsedFile& file, StmtList list, uint32_t offse
 
 std::vector<Definition> Workspace::visible_at(uint32_t offset) {
     std::vector<Definition> out;
+    added_ = {main_.get()};
     visible_in(*main_, main_->program.statements, offset, true, out, 0);
     return out;
 }

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,10 @@ private:
     std::shared_ptr<ParsedFile> main_;
     FileReader reader_;
     std::map<std::string, std::shared_ptr<ParsedFile>> files_;
+    // The included files whose top level visible_at has already added: each once (a file that
+    // includes itself, or two files that include the same one, would otherwise be walked again
+    // at every level, exponentially often).
+    std::set<const ParsedFile*> added_;
 };
 
 // What is under or around a position of the main file.

@@ -200,6 +200,48 @@ with tempfile.TemporaryDirectory() as tmp:
     check(len(d) == 1 and "twice" in d[0]["message"], "an open include's unsaved text is used", d)
     c.close()
 
+    # Closing the included document: the includer is checked again, with the file on disk.
+    c = Client(WSD, cwd=tmp)
+    c.initialize()
+    with open(os.path.join(tmp, "lib.wsdi"), "w") as f:
+        f.write("let L = 1\n")
+    main_uri, lib_uri = uri_of(os.path.join(tmp, "m2.wsd")), uri_of(os.path.join(tmp, "lib.wsdi"))
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": main_uri, "languageId": "wsd", "version": 1,
+              "text": "camera { position <0,0,-5> look_at <0,0,0> }\ninclude \"lib.wsdi\"\nlet y = L\n"}})
+    c.wait_diagnostics(main_uri, 1)
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": lib_uri, "languageId": "wsd", "version": 1,
+                                                       "text": "let M = 1\n"}})
+    d = c.wait_diagnostics(main_uri)["diagnostics"]
+    check(any("unknown name 'L'" in x["message"] for x in d), "an open include's text hides L", d)
+    c.notify("textDocument/didClose", {"textDocument": {"uri": lib_uri}})
+    d = c.wait_diagnostics(main_uri)["diagnostics"]
+    check(not any(x["severity"] == 1 for x in d), "closed: the include is read from disk again", d)
+
+    # A file that includes itself three times: hover walks each file once (it was 3^16 walks).
+    with open(os.path.join(tmp, "loop.wsdi"), "w") as f:
+        f.write('let K = 1\ninclude "loop.wsdi"\ninclude "loop.wsdi"\ninclude "loop.wsdi"\n')
+    h_uri = uri_of(os.path.join(tmp, "h.wsd"))
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": h_uri, "languageId": "wsd", "version": 1,
+                                                       "text": 'include "loop.wsdi"\nlet y = K\n'}})
+    c.wait_diagnostics(h_uri, 1)
+    r = c.request("textDocument/hover", {"textDocument": {"uri": h_uri}, "position": {"line": 1, "character": 8}},
+                  timeout=20)
+    check("loop.wsdi:1:5" in r["result"]["contents"]["value"], "hover through a self-including file", r)
+
+    # A note in an untitled document names the document's own URI.
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": "untitled:Untitled-1", "languageId": "wsd",
+                                                       "version": 1, "text": "let a = 1\nlet a = 2\n"}})
+    d = c.wait_diagnostics("untitled:Untitled-1")["diagnostics"]
+    uris = [i["location"]["uri"] for x in d for i in x.get("relatedInformation", [])]
+    check(uris and all(u == "untitled:Untitled-1" for u in uris), "untitled: related information", uris)
+
+    # Requests after shutdown are refused, initialize included.
+    check(c.request("shutdown", None)["result"] is None, "shutdown")
+    r = c.request("initialize", {"processId": None, "capabilities": {}})
+    check("error" in r and r["error"]["code"] == -32600, "initialize after shutdown is refused", r)
+    c.notify("exit", None)
+    check(c.proc.wait(timeout=30) == 0, "exit after shutdown: status 0")
+
     # Exit without shutdown: status 1.
     c = Client(WSD, cwd=tmp)
     c.initialize()
