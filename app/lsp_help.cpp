@@ -235,20 +235,22 @@ json completion(Document& doc, Position at, Encoding enc, const FileReader& read
             for (const char* t : {"scale", "rotate", "translate"}) add(t, PropertyItem, "a transform");
     };
 
-    // The word being typed and what stands before it.
+    // The word being typed and the token before it (comments are not tokens: a `*/` or a comment
+    // ending in ',' says nothing of what comes next).
     uint32_t word_begin = offset;
     while (word_begin > 0 && word_char(text[word_begin - 1])) --word_begin;
-    uint32_t before = word_begin;
-    bool new_line = false;
-    while (before > 0 && std::isspace(static_cast<unsigned char>(text[before - 1]))) {
-        if (text[before - 1] == '\n' || text[before - 1] == '\r') new_line = true;
-        --before;
-    }
+    Lexer lexer(0, text, nullptr);
+    Token last{TokenKind::Eof, 0, 0, 0};
+    for (Token t = lexer.next(); t.kind != TokenKind::Eof && t.end <= word_begin; t = lexer.next()) last = t;
+    const uint32_t before = last.end;
+    const std::string_view between = std::string_view(text).substr(before, word_begin - before);
+    const bool new_line = between.find_first_of("\r\n") != std::string_view::npos;
     const char prev = before > 0 ? text[before - 1] : '\0';
-    uint32_t prev_word_begin = before;
-    while (prev_word_begin > 0 && word_char(text[prev_word_begin - 1])) --prev_word_begin;
+    const std::string_view lexeme = lexer.lexeme(last);
     const std::string_view prev_word =
-        std::string_view(text).substr(prev_word_begin, before - prev_word_begin);
+        before > 0 && !lexeme.empty() && word_char(lexeme.back()) && word_char(lexeme.front())
+            ? lexeme
+            : std::string_view();
 
     if (c.block && c.table) {
         // A property name starts an item: after '{', on a new line, or after a whole value.

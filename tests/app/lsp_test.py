@@ -102,12 +102,24 @@ with tempfile.TemporaryDirectory() as tmp:
     labels = [i["label"] for i in (r.get("result") or [])]
     check("shiny" in labels and "R" in labels and "twice" in labels and "radius" not in labels,
           "completion of a value", labels)
+    # A comment before the word says nothing of what comes next: a block comment's '/', a line
+    # comment that ends in ','.
+    for i, before in enumerate(["material shiny /* x */ ", "material shiny // x, y,\n  "]):
+        commented = FIXED.replace("material shiny }", before + "ra }")
+        c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 4 + i},
+                                            "contentChanges": [{"text": commented}]})
+        r = c.request("textDocument/completion",
+                      {"textDocument": {"uri": uri}, "position": position(commented, "ra }", delta=2)})
+        labels = [x["label"] for x in (r.get("result") or [])]
+        check("radius" in labels and "shiny" not in labels, "completion after a comment: " + before.strip(), labels)
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 6},
+                                        "contentChanges": [{"text": edited}]})
     # At statement level: keywords and names.
     r = c.request("textDocument/completion", {"textDocument": {"uri": uri}, "position": {"line": 4, "character": 0}})
     labels = [i["label"] for i in (r.get("result") or [])]
     check("sphere" in labels and "let" in labels and "shiny" in labels and "radius" not in labels,
           "completion at statement level", labels)
-    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 4},
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 7},
                                         "contentChanges": [{"text": FIXED}]})
 
     # Definition of a let across an include, and of the include string.
@@ -136,9 +148,9 @@ with tempfile.TemporaryDirectory() as tmp:
     with open(os.path.join(tmp, "bad.wsdi"), "w") as f:
         f.write("let broken = 1 +\n")
     inc_text = HEADER + 'include "bad.wsdi"\n'
-    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 5},
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 8},
                                         "contentChanges": [{"text": inc_text}]})
-    d = c.wait_diagnostics(uri, 5)["diagnostics"]
+    d = c.wait_diagnostics(uri, 8)["diagnostics"]
     check(len(d) >= 1 and d[0]["range"]["start"] == position(inc_text, '"bad.wsdi"')
           and "bad.wsdi:" in d[0]["message"] and "included from" in d[0]["message"],
           "an included file's error at the include line", d)
@@ -165,9 +177,9 @@ with tempfile.TemporaryDirectory() as tmp:
     check(isinstance(r.get("result"), list), "still answering after garbage", r)
 
     # A scene that loops forever is stopped by the language's limits; the server goes on.
-    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 6},
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 9},
                                         "contentChanges": [{"text": "fn f(n) { return f(n + 1) }\nlet x = f(0)\n"}]})
-    d = c.wait_diagnostics(uri, 6)["diagnostics"]
+    d = c.wait_diagnostics(uri, 9)["diagnostics"]
     check(len(d) >= 1 and d[0]["severity"] == 1, "a runaway recursion is an error", d)
 
     status = c.close()
