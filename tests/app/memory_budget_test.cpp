@@ -25,6 +25,15 @@ ShapeSpec mesh_shape(size_t triangles) {
     return s;
 }
 
+// 2^24 instances through groups of groups, made while the scene is evaluated (the object
+// statement is line 6).
+const char* const kNestedInstances =
+    "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
+    "let t = mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>]  faces [<0, 1, 2>]  material { } }\n"
+    "let a = group { for i in 0 .. 4096 { object t { translate <i, 0, 0> } } }\n"
+    "let b = group { for j in 0 .. 4096 { object a { translate <0, j, 0> } } }\n"
+    "object b { }\n";
+
 }  // namespace
 
 TEST_CASE("the memory estimate grows with triangles and counts a prototype once", "[memory]") {
@@ -85,13 +94,7 @@ TEST_CASE("running out of memory while the scene is evaluated is a scene error, 
         return;
     }
     TempDir dir;
-    write_file(
-        dir / "nest.wsd",
-        "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
-        "let t = mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>]  faces [<0, 1, 2>]  material { } }\n"
-        "let a = group { for i in 0 .. 4096 { object t { translate <i, 0, 0> } } }\n"
-        "let b = group { for j in 0 .. 4096 { object a { translate <0, j, 0> } } }\n"
-        "object b { }\n");
+    write_file(dir / "nest.wsd", kNestedInstances);
     const RunResult r = run_wsd(dir, "check nest.wsd", "ulimit -v 1500000;");
     INFO(r.err);
     CHECK(r.status == 1);
@@ -103,13 +106,7 @@ TEST_CASE("instances that cannot be held while the scene loads are refused befor
     // 2^24 instances (8 GiB of shape records) against a 1 GiB budget: refused at the object
     // statement that adds them, before any is made.
     TempDir dir;
-    write_file(
-        dir / "nest.wsd",
-        "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
-        "let t = mesh { vertices [<0, 0, 0>, <1, 0, 0>, <0, 1, 0>]  faces [<0, 1, 2>]  material { } }\n"
-        "let a = group { for i in 0 .. 4096 { object t { translate <i, 0, 0> } } }\n"
-        "let b = group { for j in 0 .. 4096 { object a { translate <0, j, 0> } } }\n"
-        "object b { }\n");
+    write_file(dir / "nest.wsd", kNestedInstances);
     const RunResult r = run_wsd(dir, "check nest.wsd", "WSD_MAX_MEMORY=1G");
     INFO(r.err);
     CHECK(r.status == 1);
