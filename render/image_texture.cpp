@@ -7,15 +7,14 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <climits>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <new>
 #include <vector>
 
+#include "render/file_util.h"
 #include "render/image_check.h"
 #include "render/image_io.h"
 #include "render/texture.h"
@@ -38,11 +37,6 @@ const std::array<float, 256>& srgb8_table() {
     return table;
 }
 
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
 std::string stb_reason() {
     const char* r = stbi_failure_reason();
     return r ? r : "unknown decoding error";
@@ -52,15 +46,6 @@ std::string stb_reason() {
 void keep_finite_non_negative(std::vector<float>& rgb) {
     for (float& c : rgb)
         if (!(c >= 0.0f) || !std::isfinite(c)) c = 0.0f;
-}
-
-// PFM, the linear format wsd writes, which stb_image does not read: "PF" or "Pf" first.
-bool is_pfm(std::FILE* f) {
-    char magic[2] = {0, 0};
-    const bool pfm =
-        std::fread(magic, 1, 2, f) == 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f');
-    std::rewind(f);
-    return pfm;
 }
 
 std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& label, std::string& error) {
@@ -79,22 +64,18 @@ std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& la
     return image;
 }
 
-// Decodes an already opened image file; `label` is the quoted path for messages.
-std::shared_ptr<Image> decode(std::FILE* f, const std::string& label, std::string& error) {
-    std::vector<unsigned char> bytes;
-    unsigned char chunk[1 << 16];
-    for (size_t got; (got = std::fread(chunk, 1, sizeof chunk, f)) > 0;)
-        bytes.insert(bytes.end(), chunk, chunk + got);
-    if (std::ferror(f) || bytes.size() > size_t{INT_MAX}) {
-        error = "cannot read image " + label + (std::ferror(f) ? ": read error" : ": file too large");
+// Decodes an image file's bytes; `label` is the quoted path for messages.
+std::shared_ptr<Image> decode(const FileBytes& bytes, const std::string& label, std::string& error) {
+    if (bytes.size > size_t{INT_MAX}) {
+        error = "cannot read image " + label + ": file too large";
         return nullptr;
     }
-    if (const std::string why = incomplete_image_data(bytes.data(), bytes.size()); !why.empty()) {
+    const auto* file = reinterpret_cast<const unsigned char*>(bytes.data.get());
+    if (const std::string why = incomplete_image_data(file, bytes.size); !why.empty()) {
         error = "cannot decode image " + label + ": " + why;
         return nullptr;
     }
-    const unsigned char* file = bytes.data();
-    const int len = static_cast<int>(bytes.size());
+    const int len = static_cast<int>(bytes.size);
     int w = 0, h = 0, n = 0;
     if (!stbi_info_from_memory(file, len, &w, &h, &n)) {
         error = "cannot decode image " + label + ": " + stb_reason();
@@ -172,20 +153,18 @@ std::shared_ptr<const Image> load_image(const std::string& path, std::string& er
         error = "cannot read image " + label + ": not a regular file";
         return nullptr;
     }
-    FilePtr file(std::fopen(path.c_str(), "rb"));
-    if (!file) {
-        error = "cannot open image " + label + ": " + std::strerror(errno);
-        return nullptr;
-    }
-    // Refuse directories, FIFOs and devices: stb would fail late or, on a FIFO, block.
-    struct stat st {};
-    if (fstat(fileno(file.get()), &st) != 0 || !S_ISREG(st.st_mode)) {
-        error = "cannot read image " + label + ": not a regular file";
-        return nullptr;
-    }
     try {
-        if (is_pfm(file.get())) return decode_pfm(path, label, error);
-        return decode(file.get(), label, error);
+        FileBytes bytes;
+        std::string reason;
+        if (!read_whole_file(path, bytes, reason)) {
+            error = "cannot open image " + label + ": " + reason;
+            return nullptr;
+        }
+        // PFM, the linear format wsd writes, which stb_image does not read: "PF" or "Pf" first.
+        const std::string_view view = bytes.view();
+        if (view.size() >= 2 && view[0] == 'P' && (view[1] == 'F' || view[1] == 'f'))
+            return decode_pfm(path, label, error);
+        return decode(bytes, label, error);
     } catch (const std::bad_alloc&) {
         error = "cannot load image " + label + ": out of memory";
         return nullptr;
