@@ -148,13 +148,17 @@ double torus_self_reach(double major, double minor, const Vec3& o, const Vec3& o
 }  // namespace
 
 int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Vec3& oe, Crossing* out) {
-    const double major = q.r0, minor = q.r1;
     const double len = std::sqrt(glm::dot(d, d));
     if (!(len > 0) || !std::isfinite(len)) return 0;
     const Vec3 u = d / len;
     // The point of the line closest to the centre: s measures from it in unit steps.
     const double t0 = -glm::dot(o, u);
-    const Vec3 c = o + t0 * u;
+    // Lengths below are in units of about the torus's size (a power of two, so that the scaling
+    // is exact): the quartic's coefficients go with the fourth power of its size, which would
+    // underflow or overflow for a torus far from unit size.
+    const double unit = std::ldexp(1.0, std::ilogb(q.r0 + q.r1));
+    const double major = q.r0 / unit, minor = q.r1 / unit;
+    const Vec3 c = (o + t0 * u) / unit;
     double lo, hi;
     if (!torus_bracket(major, minor, c, u, lo, hi)) return 0;
 
@@ -178,7 +182,7 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
         v = (a * a + p.y * p.y) - minor * minor;
         dv = 2 * (a * (p.x * u.x + p.z * u.z) / rho + p.y * u.y);
     };
-    const double self_reach = torus_self_reach(major, minor, o, oe);
+    const double self_reach = torus_self_reach(q.r0, q.r1, o, oe);  // in the frame's own lengths
 
     int n = 0;
     double gprev = implicit(pts[0]);
@@ -194,6 +198,7 @@ int torus_crossings(const QuadricPrim& q, const Vec3& o, const Vec3& d, const Ve
             continue;
         }
         gprev = gnext;
+        s *= unit;
         out[n++] = {(t0 + s) / len, kQuadricBody, std::abs(t0 + s) <= self_reach};
     }
     return n;
