@@ -56,7 +56,19 @@ inline Vec3 cosine_direction(const Vec3& n, const Uniform2& xi) {
 // The power heuristic's weight for a sample of density a against another strategy's density b.
 inline double power_heuristic(double a, double b) {
     const double a2 = a * a, b2 = b * b;
-    return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+    if (a2 + b2 <= std::numeric_limits<double>::max()) return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+    // Squares past the largest double (the density of a very small emitter): the same weight
+    // from the ratio of the two, which stays in range.
+    if (std::isinf(a) && std::isinf(b)) return 0.5;
+    if (a >= b) {
+        const double r = b / a;
+        return 1 / (1 + r * r);
+    }
+    if (a < b) {
+        const double r = a / b;
+        return r * r / (1 + r * r);
+    }
+    return 0.0;  // NaN
 }
 
 // Host: the tracer, for its direct term (`lights`) at a hit.

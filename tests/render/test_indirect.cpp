@@ -244,6 +244,31 @@ TEST_CASE("R86: a zero-area emitter is refused", "[indirect][robust]") {
     CHECK(render::build_scene(spec, errors, true, 1));
 }
 
+TEST_CASE("R98: a very small emitter lights nothing and darkens nothing", "[indirect][robust]") {
+    // An emissive sphere of radius 1e-80: its area (1e-159) is finite and not zero, so it is
+    // sampled, and its density per unit area (1e159) squared is past the largest double. The
+    // power heuristic then takes the ratio of the densities instead of their squares: before,
+    // it gave inf/inf, and every sample that chose the emitter was NaN (render_spec asserts none
+    // is). The lit floor stays as bright as without the emitter, up to the noise.
+    auto scene = [](bool tiny) {
+        auto spec = basic_scene(12, 12, {0, 2, -6}, 40);
+        spec.camera.look_at = {0, 0, 0};
+        spec.settings.indirect_samples = 4;
+        spec.lights.push_back(point_light({-3, 6, -4}));
+        spec.shapes.push_back(plane({0, 1, 0}, 0, add_material(spec, matte({0.8, 0.8, 0.8}))));
+        if (tiny)
+            spec.shapes.push_back(sphere({0, 3, 0}, 1e-80, add_material(spec, emissive(Color(1), Color(1)))));
+        return spec;
+    };
+    const auto with = render_spec(scene(true)), without = render_spec(scene(false));
+    CHECK(with.stats.emitter_samples > 0);
+    double sum_with = 0, sum_without = 0;
+    for (double v : with.film.rgb) sum_with += v;
+    for (double v : without.film.rgb) sum_without += v;
+    CHECK(sum_without > 0);
+    CHECK(sum_with == Approx(sum_without).epsilon(0.05));
+}
+
 TEST_CASE("R87: an emissive plane is seen but not sampled", "[indirect][robust]") {
     auto spec = basic_scene(8, 8, {0, 0, -3}, 40);
     spec.settings.indirect_samples = 4;
