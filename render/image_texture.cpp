@@ -42,10 +42,22 @@ std::string stb_reason() {
     return r ? r : "unknown decoding error";
 }
 
-// Values a texture may hold: finite and >= 0 (a PFM can store anything, NaN included).
-void keep_finite_non_negative(std::vector<float>& rgb) {
-    for (float& c : rgb)
-        if (!(c >= 0.0f) || !std::isfinite(c)) c = 0.0f;
+// Values a texture may hold: finite and >= 0. A PFM can store anything, NaN included; such a
+// value is the file's error, at its pixel (x from the left, y from the top).
+std::string bad_texel(const std::vector<float>& rgb, int width, const std::string& label) {
+    static const char* const kChannel[3] = {"red", "green", "blue"};
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        const float c = rgb[i];
+        if (c >= 0.0f && std::isfinite(c)) continue;
+        const size_t pixel = i / 3, w = static_cast<size_t>(width);
+        const std::string value = std::isnan(c)   ? "NaN"
+                                  : std::isinf(c) ? (c > 0 ? "+inf" : "-inf")
+                                                  : "negative";
+        return "image " + label + " holds a " + value + " " + kChannel[i % 3] + " value at pixel (" +
+               std::to_string(pixel % w) + ", " + std::to_string(pixel / w) +
+               "); texture values must be finite and at least 0";
+    }
+    return {};
 }
 
 std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& label, std::string& error) {
@@ -60,7 +72,10 @@ std::shared_ptr<Image> decode_pfm(const std::string& path, const std::string& la
     image->width = film.width;
     image->height = film.height;
     image->rgb = std::move(film.rgb);
-    keep_finite_non_negative(image->rgb);
+    if (std::string why = bad_texel(image->rgb, image->width, label); !why.empty()) {
+        error = std::move(why);
+        return nullptr;
+    }
     return image;
 }
 
@@ -104,8 +119,11 @@ std::shared_ptr<Image> decode(const FileBytes& bytes, const std::string& label, 
         const size_t count = static_cast<size_t>(w) * static_cast<size_t>(h) * 3;
         image->rgb.assign(data, data + count);
         stbi_image_free(data);
-        // RGBE cannot encode NaN, but keep the promise that texture values are finite and >= 0.
-        keep_finite_non_negative(image->rgb);
+        // RGBE holds neither NaN nor negative values; checked all the same.
+        if (std::string why = bad_texel(image->rgb, w, label); !why.empty()) {
+            error = std::move(why);
+            return nullptr;
+        }
     } else if (stbi_is_16_bit_from_memory(file, len)) {
         stbi_us* data = stbi_load_16_from_memory(file, len, &w, &h, &n, 3);
         if (!data) return fail();

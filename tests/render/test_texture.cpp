@@ -185,20 +185,12 @@ TEST_CASE("R49: lookups at extreme uv stay inside the image", "[texture]") {
 }
 
 TEST_CASE("a PFM image, as wsd writes it, loads as linear floats", "[texture]") {
-    // 3×2, with values above 1 and one that no 8-bit format could hold; NaN, Inf and negatives
-    // become 0 like every other texture value that is not finite and >= 0.
+    // 3×2, with values above 1 and one that no 8-bit format could hold.
     Film film;
     film.width = 3;
     film.height = 2;
-    film.rgb = {0.0f,    0.25f,
-                1.0f,    7.5f,
-                0.001f,  0.5f,
-                1e-7f,   2.0f,
-                3.0f,    0.75f,
-                0.125f,  4.0f,
-                -1.0f,   std::numeric_limits<float>::quiet_NaN(),
-                0.5f,    std::numeric_limits<float>::infinity(),
-                0.0625f, 0.3f};
+    film.rgb = {0.0f,  0.25f,  1.0f, 7.5f,  0.001f, 0.5f, 1e-7f,   2.0f, 3.0f,
+                0.75f, 0.125f, 4.0f, 0.25f, 0.125f, 0.5f, 0.0625f, 0.3f, 1.0f};
     const std::string path = (temp_dir() / "written.pfm").string();
     std::string error;
     REQUIRE(write_image(path, film, error));
@@ -207,13 +199,25 @@ TEST_CASE("a PFM image, as wsd writes it, loads as linear floats", "[texture]") 
     REQUIRE(image);
     REQUIRE(image->width == 3);
     REQUIRE(image->height == 2);
-    std::vector<float> expected = film.rgb;
-    expected[12] = expected[13] = expected[15] = 0.0f;
-    CHECK(image->rgb == expected);
+    CHECK(image->rgb == film.rgb);
     // The lookup at a texel's centre returns it exactly (top row first, like every image).
     const Color c = sample_image(*image, Vec2(1.5 / 3.0, 0.25), false);
     CHECK(c.r == Approx(7.5).margin(1e-6));
     CHECK(c.g == Approx(0.001).margin(1e-6));
+
+    // NaN, infinities and negative values are not colours: the file is refused, at the pixel.
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const std::pair<float, std::string> bad[] = {
+        {nan, "NaN"}, {inf, "+inf"}, {-inf, "-inf"}, {-1.0f, "negative"}};
+    for (const auto& [value, word] : bad) {
+        Film b = film;
+        b.rgb[3 * 4 + 1] = value;  // pixel (1, 1), green
+        REQUIRE(write_image(path, b, error));
+        error.clear();
+        CHECK_FALSE(load_image(path, error));
+        CHECK(error == "image '" + path + "' holds a " + word +
+                           " green value at pixel (1, 1); texture values must be finite and at least 0");
+    }
 
     const std::string cut = (temp_dir() / "cut.pfm").string();
     std::ofstream(cut, std::ios::binary) << "PF\n3 2\n-1.0\n" << std::string(10, '\0');
