@@ -85,6 +85,16 @@ std::map<std::string_view, BlockTable> make_tables() {
 }
 
 bool parallel(glm::dvec3 a, glm::dvec3 b) {
+    // Each taken to a largest component in [1, 2) (a power of two, exact), so that the test
+    // neither underflows for tiny vectors nor overflows for huge ones: a direction is a direction.
+    const auto unit_scale = [](glm::dvec3& v) {
+        const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+        if (m > 0 && std::isfinite(m))
+            v = glm::dvec3(std::ldexp(v.x, -std::ilogb(m)), std::ldexp(v.y, -std::ilogb(m)),
+                           std::ldexp(v.z, -std::ilogb(m)));
+    };
+    unit_scale(a);
+    unit_scale(b);
     return glm::length(glm::cross(a, b)) <= render::kParallelSine * glm::length(a) * glm::length(b);
 }
 

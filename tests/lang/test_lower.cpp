@@ -318,6 +318,15 @@ TEST_CASE("the camera's up must not be parallel to the view direction", "[lower]
           std::vector<std::string>{"1:51: 'fov' must be in (0, 180), found 180"});
     CHECK(errors("camera { position <0, 0, 0> }") ==
           std::vector<std::string>{"1:1: missing property 'look_at' in camera"});
+    // Parallel is a matter of direction, not of length: a tiny or huge up that is perpendicular
+    // is fine (its length once underflowed and it read as parallel), and a tiny parallel one is not.
+    CHECK(errors("camera { position <0, 5, 0> look_at <0, 0, 0> up <0, 0, 1e-300> }").empty());
+    CHECK(errors("camera { position <0, 2, -6> look_at <0, 1, 0> up <0, 1e-300, 0> }").empty());
+    CHECK(errors("camera { position <0, 5, 0> look_at <0, 0, 0> up <0, 0, 1e300> }").empty());
+    CHECK(errors("camera { position <0, 1e-300, 0> look_at <0, 0, 1e-300> }").empty());
+    CHECK(
+        errors("camera { position <0, 0, 0> look_at <0, 5, 0> up <0, 1e-300, 0> }") ==
+        std::vector<std::string>{"1:50: camera 'up' is parallel to the view direction (look_at - position)"});
 }
 
 TEST_CASE("area lights need non-zero, non-parallel edges and a bounded grid", "[lower][errors]") {
@@ -325,6 +334,9 @@ TEST_CASE("area lights need non-zero, non-parallel edges and a bounded grid", "[
           std::vector<std::string>{"1:35: area light edge 'u' must not be the zero vector"});
     CHECK(body_errors("light area { position <0, 0, 0> u <1, 0, 0> v <-2, 0, 0> }") ==
           std::vector<std::string>{"1:47: area light edges 'u' and 'v' are parallel"});
+    CHECK(body_errors("light area { position <0, 0, 0> u <1e-300, 0, 0> v <-1e300, 0, 0> }") ==
+          std::vector<std::string>{"1:52: area light edges 'u' and 'v' are parallel"});
+    CHECK(body_errors("light area { position <0, 5, 0> u <1e-150, 0, 0> v <0, 0, 1e-150> }").empty());
     CHECK(body_errors("light area { position <0, 0, 0> u <1, 0, 0> v <0, 0, 1> samples 1024 }") ==
           std::vector<std::string>{"1:65: area light has 1024 x 1024 samples, more than the limit of 65536"});
     CHECK(body_errors("light area { position <0, 0, 0> u <1, 0, 0> v <0, 0, 1> samples 0 }") ==
