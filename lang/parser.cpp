@@ -179,6 +179,8 @@ Stmt* Parser::parse_statement() {
                 help = "to bind a name, write 'let " + word + " = ...'";
             else if (word == "light_source")
                 help = "a light is written 'light point { position ... }' (or 'light area { ... }')";
+            else if (word == "merge")
+                help = "POV-Ray's 'merge' is 'union' in wsd: a union of solids has no inner surfaces";
             else if (!match.empty())
                 help = "did you mean '" + match + "'?";
         }
