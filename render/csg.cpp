@@ -447,7 +447,9 @@ std::optional<Bounds3f> build_csg(const OtherBuild& b, const ShapeSpec& s, const
     const Vec3 pad = gamma(8) * (abs3(use.lo) + abs3(use.hi) + (use.hi - use.lo));
     const Bounds3f bounds = Bounds3f::around(use.lo - pad, use.hi + pad);
     if (!is_finite(bounds.lo) || !is_finite(bounds.hi)) {
-        b.error("CSG is out of range after its transform");
+        b.error(
+            "CSG is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+            "float)");
         return std::nullopt;
     }
     if (b.transmissive) *b.transmissive = *b.transmissive || csg_transmissive(b.spec, *s.csg, s.material);

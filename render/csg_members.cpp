@@ -413,7 +413,8 @@ std::shared_ptr<const CsgMesh> make_csg_mesh(const std::shared_ptr<const MeshDat
         const Vec3 w = x.point(Vec3(m.vertices[i]));
         const Vec3f wf(static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z));
         if (!is_finite(m.vertices[i]) || !is_finite(wf)) {
-            error = "mesh vertex " + std::to_string(i) + " is out of range after its transform";
+            error = "mesh vertex " + std::to_string(i) +
+                    " is out of range: after any transform, it must stay within ±3.4e38 (the largest float)";
             return nullptr;
         }
         mesh->verts.push_back(wf);

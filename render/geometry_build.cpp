@@ -112,9 +112,14 @@ void Builder::sphere(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bo
     }
     if (!is_finite(p.center) || !std::isfinite(p.radius) || !(p.radius > 0) || !is_finite(lo) ||
         !is_finite(hi))
-        return error("sphere is out of range after its transform");
+        return error(
+            "sphere is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+            "float)");
     Bounds3f b = padded(lo, hi);
-    if (!is_finite(b.lo) || !is_finite(b.hi)) return error("sphere is out of range after its transform");
+    if (!is_finite(b.lo) || !is_finite(b.hi))
+        return error(
+            "sphere is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+            "float)");
     info.extra = static_cast<uint32_t>(g.spheres.size());
     add_bounded(PrimKind::Sphere, static_cast<uint32_t>(g.spheres.size()), b, trans);
     g.spheres.push_back(p);
@@ -141,7 +146,10 @@ void Builder::box(const ShapeSpec& s, const Transform& x, ShapeInfo& info, bool 
         hi = glm::max(hi, w);
     }
     Bounds3f b = padded(lo, hi);
-    if (!is_finite(b.lo) || !is_finite(b.hi)) return error("box is out of range after its transform");
+    if (!is_finite(b.lo) || !is_finite(b.hi))
+        return error(
+            "box is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+            "float)");
     info.extra = static_cast<uint32_t>(g.boxes.size());
     add_bounded(PrimKind::Box, static_cast<uint32_t>(g.boxes.size()), b, trans);
     g.boxes.push_back(p);
@@ -171,7 +179,9 @@ void Builder::triangle(const ShapeSpec& s, const Transform& x, ShapeInfo& info, 
         Vec3f w;
         if (!world_vertex(x, v, w)) {
             g.verts.resize(base);
-            return error("triangle is out of range after its transform");
+            return error(
+                "triangle is out of range: its bounds, after any transform, must stay within ±3.4e38 (the "
+                "largest float)");
         }
         g.verts.push_back(w);
     }
@@ -204,7 +214,10 @@ void Builder::plane(const ShapeSpec& s, const Transform& x, ShapeInfo& info, boo
     p.c = glm::dot(p.n, on_plane);
     p.prim = next_prim++;
     p.transmissive = trans ? 1u : 0u;
-    if (p.n == Vec3(0) || !std::isfinite(p.c)) return error("plane is out of range after its transform");
+    if (p.n == Vec3(0) || !std::isfinite(p.c))
+        return error(
+            "plane is out of range: its distance from the origin, after any transform, must stay within "
+            "±3.4e38 (the largest float)");
     PlaneExtra extra;
     extra.u = plane_u_axis(n);
     extra.v = glm::cross(n, extra.u);

@@ -416,7 +416,9 @@ std::optional<Bounds3f> build_instance(const OtherBuild& b, const ShapeSpec& s, 
     const Vec3 pw = kRelPad * (abs3(lo) + abs3(hi) + (hi - lo));
     const Bounds3f world = Bounds3f::around(lo - pw, hi + pw);
     if (!is_finite(world.lo) || !is_finite(world.hi)) {
-        b.error("instance is out of range after its transform");
+        b.error(
+            "instance is out of range: its bounds, after any transform, must stay within ±3.4e38 (the "
+            "largest float)");
         return std::nullopt;
     }
     // Every member's composed transform, as the flat scene's would be, must be valid.

@@ -264,7 +264,9 @@ std::optional<Bounds3f> build_quadric(const OtherBuild& b, const ShapeSpec& s, c
     const Vec3 pad = gamma(8) * (abs3(lo) + abs3(hi) + (hi - lo));
     const Bounds3f bounds = Bounds3f::around(lo - pad, hi + pad);
     if (!is_finite(bounds.lo) || !is_finite(bounds.hi)) {
-        b.error(std::string(shape_word(s.kind)) + " is out of range after its transform");
+        b.error(std::string(shape_word(s.kind)) +
+                " is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+                "float)");
         return std::nullopt;
     }
     b.g.quadrics.push_back(q);

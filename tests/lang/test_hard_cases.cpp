@@ -140,7 +140,9 @@ TEST_CASE("R54: malformed input table", "[hard-cases][R54]") {
          c + "mesh { vertices [<1e39, 0, 0>, <0, 1, 0>, <0, 0, 1>] faces [<0, 1, 2>] material { } }\n",
          "r54.wsd:2:18", "vertex 0 is too large for single precision"},
         {"1e39 as a sphere centre", c + "sphere { center <1e39, 0, 0>  radius 1  material { } }\n",
-         "r54.wsd:2:1", "sphere is out of range after its transform"},
+         "r54.wsd:2:1",
+         "sphere is out of range: its bounds, after any transform, must stay within ±3.4e38 (the largest "
+         "float)"},
         {"nan", c + "let x = nan\n", "r54.wsd:2:9", "unknown name 'nan'"},
         {"NaN", c + "let x = NaN\n", "r54.wsd:2:9", "unknown name 'NaN'"},
         {"inf", c + "let x = inf\n", "r54.wsd:2:9", "unknown name 'inf'"},
