@@ -95,7 +95,10 @@ int run_check(const CheckArgs& args) {
         std::cout << std::flush;
         if (rank(status) > rank(worst)) worst = status;
     }
-    if (args.json) std::cout << results.dump(2) << std::endl;
+    // File names need not be UTF-8: a byte that is not becomes U+FFFD rather than an exception.
+    if (args.json)
+        std::cout << results.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace)
+                  << std::endl;
     return worst;
 }
 
