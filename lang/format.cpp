@@ -44,6 +44,8 @@ struct Mark {
 // Walks the AST and marks the offsets of the tokens whose role the layout needs.
 class Marker {
 public:
+    Marker(uint32_t file, std::string_view text) : lexer_(file, text, nullptr) {}
+
     std::vector<Mark> marks;
 
     void statements(StmtList list) {
@@ -55,6 +57,14 @@ public:
 
 private:
     void mark(uint32_t offset, uint8_t role) { marks.push_back({offset, role}); }
+    // The offset of a vector's '<': a parenthesized vector's span begins at its first '('.
+    uint32_t vector_open_at(const Expr& e) {
+        if (lexer_.text()[e.span.begin] == '<') return e.span.begin;
+        lexer_.reset(e.span.begin);
+        Token t = lexer_.next();
+        while (t.kind != TokenKind::Less && t.kind != TokenKind::Eof) t = lexer_.next();
+        return t.begin;
+    }
     void exprs(ExprList list) {
         for (const Expr* e : list) expr(*e);
     }
@@ -70,6 +80,8 @@ private:
             mark(it.values[0]->span.begin, item_start);
         exprs(it.values);
     }
+
+    Lexer lexer_;
 };
 
 void Marker::statement(const Stmt& s) {
@@ -132,7 +144,7 @@ void Marker::expr(const Expr& e) {
         case ExprKind::Bad:
             return;
         case ExprKind::Vector:
-            mark(e.span.begin, vector_open);
+            mark(vector_open_at(e), vector_open);
             exprs(e.as<VectorExpr>().components);
             return;
         case ExprKind::List:
@@ -456,7 +468,7 @@ std::optional<std::string> format_source(uint32_t file, const SourceManager& sou
     const SourceFile& source = sources.file(file);
     const std::string_view text = source.text;
 
-    Marker marker;
+    Marker marker(file, text);
     marker.statements(program.statements);
     Layout layout(text, elements(file, text, std::move(marker.marks)));
     std::string out(text.substr(0, bom_length(text)));

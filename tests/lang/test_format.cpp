@@ -237,6 +237,10 @@ TEST_CASE("fmt style: operators, calls, indexes, vectors, strings and numbers", 
     CHECK(fmt("fn f(a,b=2){return a<b}") == "fn f(a, b = 2) { return a < b }\n");
     CHECK(fmt("let v=<1,-2,3>==<1,-2,3>") == "let v = <1, -2, 3> == <1, -2, 3>\n");
     CHECK(fmt("let v=<1,2>>=w") == "let v = <1, 2> >= w\n");
+    // A vector in parentheses is still a vector: no spaces inside its < >.
+    CHECK(fmt("let a=(<1,2,3>)") == "let a = (<1, 2, 3>)\n");
+    CHECK(fmt("let a=(( /* v */ <1,2>))*2") == "let a = (( /* v */ <1, 2>)) * 2\n");
+    CHECK(fmt("let m=material{color (<1,1,1>)}") == "let m = material { color (<1, 1, 1>) }\n");
     CHECK(fmt("let l=[1.50,2e3,.5,]") == "let l = [1.50, 2e3, .5,]\n");
     CHECK(fmt("let s=\"a \\\"b\\\" \\\\ \\n\\t\"") == "let s = \"a \\\"b\\\" \\\\ \\n\\t\"\n");
     CHECK(fmt("let m=material{texture image \"a.png\"}") == "let m = material { texture image \"a.png\" }\n");
