@@ -290,8 +290,33 @@ std::vector<Element> elements(uint32_t file, std::string_view text, std::vector<
     return all;
 }
 
-// The space between two tokens on one line.
-std::string_view spacing(const Element& a, const Element& b) {
+// Whether the characters `last` and `first` may join across a token boundary: word characters
+// and '.' (`a.5`, `..`), anything then '=' (`!=`, `<=`), '/' then anything (`//`), `&&`, `||`.
+bool may_join(char last, char first) {
+    const auto word = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+               c == '.';
+    };
+    return (word(last) && word(first)) || first == '=' || last == '/' ||
+           (last == first && (last == '&' || last == '|'));
+}
+
+// Whether tokens a and b, written with nothing between them, still lex as a and b: `. 5` must
+// not become the number `.5`, nor `! ==` become `!=` and `=`.
+bool lexes_apart(std::string_view text, const Element& a, const Element& b) {
+    if (!may_join(text[a.end - 1], text[b.begin])) return true;
+    std::string joined(text.substr(a.begin, a.end - a.begin));
+    const uint32_t split = static_cast<uint32_t>(joined.size());
+    joined += text.substr(b.begin, b.end - b.begin);
+    Lexer lexer(0, joined, nullptr);
+    const Token first = lexer.next();
+    const Token second = lexer.next();
+    return first.kind == a.kind && first.end == split && second.kind == b.kind && second.begin == split &&
+           second.end == joined.size();
+}
+
+// The space between two tokens on one line, by their roles.
+std::string_view role_spacing(const Element& a, const Element& b) {
     if (a.comment || b.comment) return " ";
     if (b.is(TokenKind::RBrace)) return a.is(TokenKind::LBrace) ? "" : " ";
     if (b.is(TokenKind::Comma) || b.closes()) return "";
@@ -300,10 +325,17 @@ std::string_view spacing(const Element& a, const Element& b) {
     if (a.is(TokenKind::Bang)) return "";
     if (b.is(TokenKind::LParen) && (a.role & callee)) return "";
     if (b.role & index_open) return "";
-    if (b.is(TokenKind::Dot)) return a.is(TokenKind::Number) ? " " : "";
+    if (b.is(TokenKind::Dot)) return a.is(TokenKind::Number) || a.is(TokenKind::LBrace) ? " " : "";
     if (a.is(TokenKind::Dot)) return "";
     if ((b.role & item_start) && !a.is(TokenKind::LBrace)) return "  ";
     return " ";
+}
+
+// The space between two tokens on one line: by their roles, and at least one where none would
+// join them into other tokens (in a block the parser skipped, tokens can stand in any order).
+std::string_view spacing(std::string_view text, const Element& a, const Element& b) {
+    const std::string_view space = role_spacing(a, b);
+    return space.empty() && !lexes_apart(text, a, b) ? " " : space;
 }
 
 // Line breaks in text[begin, end): LF, CRLF and a lone CR each count one.
@@ -330,8 +362,8 @@ public:
                 breaks_[k] = line_breaks(text_, el_[k - 1].end, e.begin);
             }
             const uint32_t before = k > 0 ? width_[k - 1] : 0;
-            width_[k] =
-                before + static_cast<uint32_t>(k > 0 ? spacing(el_[k - 1], e).size() : 0) + (e.end - e.begin);
+            width_[k] = before + static_cast<uint32_t>(k > 0 ? spacing(text_, el_[k - 1], e).size() : 0) +
+                        (e.end - e.begin);
             comments_[k] = (k > 0 ? comments_[k - 1] : 0) + (e.comment ? 1 : 0);
             lines_prefix_.push_back((k > 0 ? lines_prefix_[k - 1] : 0) + breaks_[k]);
             if (e.is(TokenKind::LBrace)) open.push_back(k);
@@ -417,7 +449,7 @@ std::string Layout::run() {
                 line_indent = indent;
                 column = indent;
             } else {
-                const std::string_view space = spacing(p, e);
+                const std::string_view space = spacing(text_, p, e);
                 out += space;
                 column += space.size();
             }

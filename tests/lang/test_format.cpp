@@ -297,6 +297,22 @@ TEST_CASE("fmt: a block the parser skips may leave brackets open or close too ma
         check_promises(input, input);
 }
 
+TEST_CASE("fmt: tokens of a skipped block are never joined into other tokens", "[format]") {
+    // Without a space between them, `. .` would lex as `..`, `. 5` as `.5`, `! ==` as `!=` `=`.
+    const auto in_block = [](const std::string& tokens) {
+        return "let s = sphere { radius 1  foo { " + tokens + " } }\n";
+    };
+    CHECK(fmt(in_block("a . . b")) == in_block("a. .b"));
+    CHECK(fmt(in_block("x. .5")) == in_block("x. .5"));
+    CHECK(fmt(in_block("! ==")) == in_block("! =="));
+    CHECK(fmt(in_block(". 5")) == in_block(". 5"));
+    CHECK(fmt(in_block("1 . 5")) == in_block("1 . 5"));
+    CHECK(fmt(in_block("a . 5")) == in_block("a. 5"));
+    CHECK(fmt(in_block("- -")) == in_block("- -"));
+    for (const char* tokens : {"a . . b", "x. .5", "! ==", ". 5", "1 . 5", "a . 5", "! =", "- . 5", ". . ."})
+        check_promises(in_block(tokens), tokens);
+}
+
 TEST_CASE("fmt refuses a file with syntax errors with the parser's diagnostics", "[format]") {
     const std::string text = "sphere { radius 1\nlet = 2\n";
     const Formatted f = format_text(text);
