@@ -414,6 +414,20 @@ std::string Layout::run() {
     size_t column = 0;
     const auto content_indent = [&] { return frames.empty() ? 0u : frames.back().indent; };
     const auto multiline_body = [&] { return frames.empty() || frames.back().multiline; };
+    // The indent of a line that comment k starts: that of the items around it, or, when a token
+    // follows the comment on its line (`1 +\n /* c */ 2`), the indent the line would have without
+    // the comment.
+    const auto comment_line_indent = [&](size_t k) {
+        size_t j = k;
+        while (j + 1 < el_.size() && el_[j].comment && !el_[j].line_comment && breaks_[j + 1] == 0) ++j;
+        const Element& t = el_[j];
+        if (t.comment || (t.role & item_start) || t.is(TokenKind::RBrace) || t.is(TokenKind::LBrace) ||
+            t.is(TokenKind::Else))
+            return content_indent();
+        if (t.closes() && !frames.empty()) return frames.back().opener_indent;
+        if (!frames.empty() && !frames.back().brace) return content_indent();
+        return content_indent() + indent_width;
+    };
     for (size_t k = 0; k < el_.size(); ++k) {
         const Element& e = el_[k];
         if (k > 0) {
@@ -423,7 +437,7 @@ std::string Layout::run() {
             uint32_t indent = 0;
             if (e.comment) {
                 newline = gap > 0 || p.line_comment;
-                indent = content_indent();
+                indent = newline ? comment_line_indent(k) : content_indent();
             } else {
                 // Brackets left open in a block the parser skipped close with the block.
                 if (e.is(TokenKind::RBrace))

@@ -259,6 +259,15 @@ TEST_CASE("fmt style: if/else, continuation lines, blank lines", "[format]") {
     CHECK(fmt("for p in [<1,0,0>,\n<2,0,0>] {\nf(p)\n}") ==
           "for p in [<1, 0, 0>,\n    <2, 0, 0>] {\n    f(p)\n}\n");
     CHECK(fmt("let a = 1\n\n\n\nlet b = 2\n") == "let a = 1\n\nlet b = 2\n");
+    // A block comment at the start of a continuation line keeps the line's indent.
+    CHECK(fmt("let e = 1 +\n  /* c */ 2") == "let e = 1 +\n    /* c */ 2\n");
+    CHECK(fmt("sphere {\n radius 1 +\n /* c */ /* d */ 2\n}") ==
+          "sphere {\n    radius 1 +\n        /* c */ /* d */ 2\n}\n");
+    CHECK(fmt("let xs = [\n1,\n /* two */ 2\n]") == "let xs = [\n    1,\n    /* two */ 2\n]\n");
+    CHECK(fmt("sphere {\n /* r */ radius 1\n}") == "sphere {\n    /* r */\n    radius 1\n}\n");
+    for (const char* input : {"let e = 1 +\n  /* c */ 2", "let a = f(1,\n /* c */ g(2,\n /* d */ 3))",
+                              "if a { f(1) }\n/* c */ else { f(2) }"})
+        check_promises(input, input);
     CHECK(fmt("group {\n\n  sphere { radius 1 }\n\n}\n") == "group {\n    sphere { radius 1 }\n}\n");
 }
 
