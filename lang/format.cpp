@@ -338,6 +338,18 @@ std::string_view spacing(std::string_view text, const Element& a, const Element&
     return space.empty() && !lexes_apart(text, a, b) ? " " : space;
 }
 
+// Appends `text` with its CRLF and lone CR line breaks written as LF (a block comment's lines).
+void append_lf(std::string& out, std::string_view text) {
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '\r') {
+            out += text[i];
+            continue;
+        }
+        out += '\n';
+        if (i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    }
+}
+
 // Line breaks in text[begin, end): LF, CRLF and a lone CR each count one.
 uint32_t line_breaks(std::string_view text, uint32_t begin, uint32_t end) {
     uint32_t n = 0;
@@ -469,7 +481,10 @@ std::string Layout::run() {
             }
         }
         const std::string_view t = text(e);
-        out += t;
+        if (e.comment)
+            append_lf(out, t);
+        else
+            out += t;
         const size_t last_break = t.find_last_of("\r\n");
         column = last_break == std::string_view::npos ? column + t.size() : t.size() - last_break - 1;
         if (e.comment) continue;
@@ -495,14 +510,16 @@ std::string Layout::run() {
     return out;
 }
 
-std::vector<std::string_view> comment_texts(uint32_t file, std::string_view text) {
+// The comments of `text`, their line breaks as LF (as the formatter writes them).
+std::vector<std::string> comment_texts(uint32_t file, std::string_view text) {
     Lexer lexer(file, text, nullptr);
     std::vector<Span> comments;
     lexer.record_comments(&comments);
     while (lexer.next().kind != TokenKind::Eof) {
     }
-    std::vector<std::string_view> texts;
-    for (const Span& c : comments) texts.push_back(text.substr(c.begin, c.end - c.begin));
+    std::vector<std::string> texts(comments.size());
+    for (size_t i = 0; i < comments.size(); ++i)
+        append_lf(texts[i], text.substr(comments[i].begin, comments[i].end - comments[i].begin));
     return texts;
 }
 

@@ -92,10 +92,13 @@ std::vector<Piece> pieces(const std::string& text) {
     return out;
 }
 
+// The comments of `text`, their line breaks as LF (the formatter writes no CR).
 std::vector<std::string> comments_of(const std::string& text) {
+    static const std::regex line_break("\r\n?");
     std::vector<std::string> out;
     for (const Piece& p : pieces(text))
-        if (p.comment) out.push_back(text.substr(p.begin, p.end - p.begin));
+        if (p.comment)
+            out.push_back(std::regex_replace(text.substr(p.begin, p.end - p.begin), line_break, "\n"));
     return out;
 }
 
@@ -288,6 +291,9 @@ TEST_CASE("fmt keeps comments where they stand", "[format]") {
 TEST_CASE("fmt: line endings, byte-order mark, fragments", "[format]") {
     CHECK(fmt("let a=1\r\nlet b=2\r\n") == "let a = 1\nlet b = 2\n");
     CHECK(fmt("\xEF\xBB\xBFlet a=1") == "\xEF\xBB\xBFlet a = 1\n");
+    // Inside block comments too: CRLF and a lone CR become LF.
+    CHECK(fmt("/* a\r\n   b\r   c */\r\nlet a=1\r\n") == "/* a\n   b\n   c */\nlet a = 1\n");
+    CHECK(fmt("let a = 1 /* x\r\ny */ + 2") == "let a = 1 /* x\ny */ + 2\n");
     const Formatted fragment = format_text("let m=material{color<1,0,0>}", "lib.wsdi");
     REQUIRE(fragment.text);
     CHECK(*fragment.text == "let m = material { color <1, 0, 0> }\n");
