@@ -1,8 +1,10 @@
-// read_whole_file: one sized read for a regular file, reads until the end for a pipe.
+// read_whole_file: one read for a regular file of the size it says, reads until the end for a
+// pipe or a file whose size says nothing (/proc).
 #include "render/file_util.h"
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,24 +15,32 @@ namespace wsd::render {
 
 namespace {
 
-// A pipe (`wsd check <(generate)`) has no size: read until its writer closes it.
-bool read_pipe(const std::string& path, FileBytes& out, std::string& reason) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) {
-        reason = std::strerror(errno);
-        return false;
+// Reads `file` until its end. `expected` is the size it says it has (0 for a pipe, and for a
+// /proc file that has bytes all the same): a buffer one byte larger takes a file of that size in
+// one read and sees its end; a longer one grows the buffer.
+bool read_to_end(std::FILE* file, size_t expected, FileBytes& out, std::string& reason) {
+    size_t capacity = expected + 1, used = 0;
+    std::unique_ptr<char[]> data(new (std::nothrow) char[capacity]);
+    for (;;) {
+        if (!data) {
+            reason = "out of memory";
+            return false;
+        }
+        errno = 0;
+        used += std::fread(data.get() + used, 1, capacity - used, file);
+        if (std::ferror(file)) {
+            reason = std::strerror(errno ? errno : EIO);
+            return false;
+        }
+        if (used < capacity) break;
+        const size_t grown = std::max<size_t>(capacity * 2, 65536);
+        std::unique_ptr<char[]> larger(new (std::nothrow) char[grown]);
+        if (larger) std::memcpy(larger.get(), data.get(), used);
+        data = std::move(larger);
+        capacity = grown;
     }
-    std::string text;
-    char buffer[65536];
-    size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-    if (std::ferror(file.get())) {
-        reason = std::strerror(errno ? errno : EIO);
-        return false;
-    }
-    out.data.reset(new char[text.size() + 1]);
-    std::memcpy(out.data.get(), text.data(), text.size());
-    out.size = text.size();
+    out.data = std::move(data);
+    out.size = used;
     return true;
 }
 
@@ -46,31 +56,17 @@ bool read_whole_file(const std::string& path, FileBytes& out, std::string& reaso
         reason = "it is a directory";
         return false;
     }
-    if (S_ISFIFO(st.st_mode)) return read_pipe(path, out, reason);
-    if (!S_ISREG(st.st_mode)) {
+    if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
         reason = "it is not a regular file";
         return false;
     }
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    // The file may have changed since stat: the size is read again from the open file.
-    if (!file || fstat(fileno(file.get()), &st) != 0 || !S_ISREG(st.st_mode)) {
+    // The file may have changed since stat: its kind and size are read again from the open file.
+    if (!file || fstat(fileno(file.get()), &st) != 0 || !(S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
         reason = file ? "it is not a regular file" : std::strerror(errno);
         return false;
     }
-    const size_t size = static_cast<size_t>(st.st_size);
-    out.data.reset(new (std::nothrow) char[size == 0 ? 1 : size]);
-    if (!out.data) {
-        reason = "out of memory";
-        return false;
-    }
-    errno = 0;
-    const size_t got = size == 0 ? 0 : std::fread(out.data.get(), 1, size, file.get());
-    if (got != size || std::ferror(file.get())) {
-        reason = std::strerror(errno ? errno : EIO);
-        return false;
-    }
-    out.size = size;
-    return true;
+    return read_to_end(file.get(), S_ISREG(st.st_mode) ? static_cast<size_t>(st.st_size) : 0, out, reason);
 }
 
 }  // namespace wsd::render

@@ -17,9 +17,10 @@ struct FileBytes {
     std::string_view view() const { return {data.get(), size}; }
 };
 
-// Reads the file `path` whole: a regular file, or a pipe until its writer closes it. A directory or
-// device is refused before it is opened (it would fail late, or never end). False + `reason`:
-// "it is a directory", "it is not a regular file", "out of memory", or the system's message.
+// Reads the file `path` whole, until its end: a regular file (also one whose size says 0, as the
+// files of /proc do), or a pipe until its writer closes it. A directory or device is refused
+// before it is opened (it would fail late, or never end). False + `reason`: "it is a directory",
+// "it is not a regular file", "out of memory", or the system's message.
 bool read_whole_file(const std::string& path, FileBytes& out, std::string& reason);
 
 }  // namespace wsd::render

@@ -62,6 +62,18 @@ TEST_CASE("read_whole_file reads regular files and pipes whole, and says why it 
     CHECK(bytes.view() == text);
 }
 
+TEST_CASE("read_whole_file reads a file whose size says nothing until its end", "[file_util]") {
+    // The files of /proc have the size 0 and bytes all the same.
+    FileBytes bytes;
+    std::string reason;
+    REQUIRE(read_whole_file("/proc/self/status", bytes, reason));
+    CHECK(bytes.view().find("Name:") == 0);
+    CHECK(bytes.view().find("VmHWM:") != std::string_view::npos);
+    REQUIRE(read_whole_file("/proc/self/maps", bytes, reason));  // longer than the first buffer
+    CHECK(bytes.view().size() > 1000);
+    CHECK(bytes.view().back() == '\n');
+}
+
 TEST_CASE("quoted puts single quotes around any text, and quoted_cut cuts long text", "[file_util]") {
     using wsd::render::quoted;
     CHECK(quoted("a b") == "'a b'");
