@@ -14,6 +14,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "app/exit_codes.h"
 #include "render/file_util.h"
 
 namespace wsd::app {
@@ -120,6 +121,18 @@ bool write_file_atomic(const std::string& path, std::string_view data, std::stri
         return false;
     }
     return true;
+}
+
+int flush_stdout(int status) {
+    errno = 0;
+    std::cout.flush();
+    int error = std::cout.bad() ? errno : 0;  // 0 when it failed before: its errno is gone
+    if (std::fflush(stdout) != 0 && error == 0) error = errno;
+    if (!std::cout.fail() && !std::ferror(stdout) && error == 0) return status;
+    std::string message = "cannot write standard output";
+    if (error != 0) message.append(": ").append(std::strerror(error));
+    fail(exit_code::io, message);
+    return status == exit_code::ok || status == exit_code::input_error ? exit_code::io : status;
 }
 
 int fail(int status, const std::string& message) {

@@ -27,6 +27,10 @@ bool same_path(const std::string& a, const std::string& b);
 // nothing is left behind.
 bool write_file_atomic(const std::string& path, std::string_view data, std::string& error);
 
+// Flushes stdout. When something written to it was lost (a full disk, /dev/full), says so and
+// returns exit_code::io in place of a `status` of success or input errors; else `status`.
+int flush_stdout(int status);
+
 // `wsd: error: message` on stderr; returns `status` so callers can `return fail(...)`.
 int fail(int status, const std::string& message);
 void warn(const std::string& message);

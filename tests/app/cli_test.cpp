@@ -130,6 +130,24 @@ TEST_CASE("ast prints one node per line with positions", "[cli][ast]") {
     CHECK(run_wsd(dir, "ast nothing.wsd").status == 3);
 }
 
+TEST_CASE("output that cannot be written to stdout exits 3 and says so", "[cli]") {
+    if (!fs::exists("/dev/full")) return;  // writes to it fail with ENOSPC
+    TempDir dir;
+    write_file(dir / "ok.wsdi", "let a = 1\n");
+    write_file(dir / "s.wsd", tiny_scene());
+    for (const char* args : {"fmt ok.wsdi", "check ok.wsdi", "check --format json ok.wsdi", "ast ok.wsdi",
+                             "check --effects s.wsd", "--help"}) {
+        INFO(args);
+        const std::string command = "cd " + shell_quote(dir.path().string()) + " && " +
+                                    shell_quote(WSD_BINARY) + " " + args + " >/dev/full 2>" +
+                                    shell_quote(dir / "err");
+        const int raw = std::system(command.c_str());
+        REQUIRE(WIFEXITED(raw));
+        CHECK(WEXITSTATUS(raw) == 3);
+        CHECK(read_file(dir / "err").find("wsd: error: cannot write standard output") != std::string::npos);
+    }
+}
+
 TEST_CASE("an internal error exits 4 and asks for a bug report", "[cli]") {
     TempDir dir;
     const RunResult r = run_wsd(dir, "--version", "WSD_TEST_INTERNAL_ERROR=1");
