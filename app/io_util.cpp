@@ -3,8 +3,10 @@
 #include "app/io_util.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -80,7 +82,13 @@ bool same_path(const std::string& a, const std::string& b) {
     return fs::exists(a, ec) && fs::exists(b, ec) && fs::equivalent(a, b, ec);
 }
 
-bool write_file_atomic(const std::string& path, std::string_view data, std::string& error) {
+bool write_file_atomic(const std::string& path, std::string_view data, std::string& error,
+                       const AtomicWrite& how) {
+    const auto cancelled = [&] { return how.cancel && how.cancel->load(); };
+    if (cancelled()) {
+        error = "interrupted";
+        return false;
+    }
     if (!output_directory_exists(path, error)) return false;
     const fs::path target(path);
     fs::path dir = target.parent_path();
@@ -93,25 +101,40 @@ bool write_file_atomic(const std::string& path, std::string_view data, std::stri
         .append("-")
         .append(std::to_string(counter++));
     const fs::path temp = dir.empty() ? fs::path(temp_name) : dir / temp_name;
-    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    // Created with no more than the bits asked for, then given exactly those.
+    const mode_t mode = static_cast<mode_t>(how.mode.value_or(0644) & 07777);
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
     if (fd < 0) {
         error = "cannot write '" + path + "': " + std::strerror(errno);
         return false;
     }
+    const auto give_up = [&](const std::string& why) {
+        error = why;
+        ::close(fd);
+        ::unlink(temp.c_str());
+        return false;
+    };
+    if (how.mode && ::fchmod(fd, mode) != 0)
+        return give_up("cannot write '" + path + "': " + std::strerror(errno));
+    // In pieces, so that a signal stops a large write soon.
+    constexpr size_t piece = size_t{1} << 20;
     size_t written = 0;
     while (written < data.size()) {
-        const ssize_t n = ::write(fd, data.data() + written, data.size() - written);
+        if (cancelled()) return give_up("interrupted");
+        const ssize_t n = ::write(fd, data.data() + written, std::min(piece, data.size() - written));
         if (n < 0) {
             if (errno == EINTR) continue;
-            error = "cannot write '" + path + "': " + std::strerror(errno);
-            ::close(fd);
-            ::unlink(temp.c_str());
-            return false;
+            return give_up("cannot write '" + path + "': " + std::strerror(errno));
         }
         written += static_cast<size_t>(n);
     }
     if (::close(fd) != 0) {
         error = "cannot write '" + path + "': " + std::strerror(errno);
+        ::unlink(temp.c_str());
+        return false;
+    }
+    if (cancelled()) {
+        error = "interrupted";
         ::unlink(temp.c_str());
         return false;
     }

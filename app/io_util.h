@@ -3,7 +3,9 @@
 // early that an output can be written, and printing `wsd: error: ...` lines.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -23,9 +25,18 @@ bool output_directory_exists(const std::string& path, std::string& error);
 // exist, the same file (links).
 bool same_path(const std::string& a, const std::string& b);
 
-// Writes `data` to a temporary file next to `path`, then renames it over `path`. On failure
-// nothing is left behind.
-bool write_file_atomic(const std::string& path, std::string_view data, std::string& error);
+// How write_file_atomic writes: the permission bits of the file (exactly these, whatever the
+// umask; by default 0644 less the umask, as for any new file), and a flag that, once set (by a
+// signal), stops the write.
+struct AtomicWrite {
+    std::optional<unsigned> mode;
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+// Writes `data` to a temporary file next to `path`, then renames it over `path`. On failure, and
+// when `how.cancel` is set before the rename (error "interrupted"), nothing is left behind.
+bool write_file_atomic(const std::string& path, std::string_view data, std::string& error,
+                       const AtomicWrite& how = {});
 
 // Flushes stdout. When something written to it was lost (a full disk, /dev/full), says so and
 // returns exit_code::io in place of a `status` of success or input errors; else `status`.

@@ -1,10 +1,16 @@
 // `wsd fmt` and `wsd check --format json` through the real binary: printing, --check and -i
-// (exit statuses, files left untouched, mtime kept, the rewrite by rename), files with syntax
-// errors reported as `check` reports them, directory arguments, and the JSON diagnostics.
+// (exit statuses, files left untouched, mtime kept, the rewrite by rename, stopped by a signal),
+// files with syntax errors reported as `check` reports them, directory arguments, and the JSON
+// diagnostics.
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include <catch2/catch.hpp>
+#include <chrono>
+#include <csignal>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "app_test_util.h"
 
@@ -82,6 +88,37 @@ TEST_CASE("fmt -i rewrites by rename, keeps permissions, leaves canonical files 
     CHECK(r.status == 0);
     CHECK(run_wsd(dir, "fmt -i --check messy.wsd").status == 2);
     CHECK(run_wsd(dir, "fmt -i -").status == 2);
+}
+
+TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no temporary file",
+          "[cli][fmt][signal]") {
+    TempDir dir;
+    std::string big;
+    for (int i = 0; i < 400000; ++i)
+        big += "let a" + std::to_string(i) + "=<1,2,3>*(" + std::to_string(i) + "-1)\n";
+    write_file(dir / "big.wsd", big);
+    fs::permissions(dir / "big.wsd", fs::perms(0600));
+    for (const auto& [signal_number, expected] : {std::pair{SIGINT, 130}, std::pair{SIGTERM, 143}}) {
+        INFO(expected);
+        const pid_t pid = ::fork();
+        REQUIRE(pid >= 0);
+        if (pid == 0) {
+            const int null = ::open("/dev/null", O_WRONLY);
+            if (::chdir(dir.path().c_str()) != 0 || null < 0) ::_exit(127);
+            ::dup2(null, 1);
+            ::dup2(null, 2);
+            ::execl(WSD_BINARY, WSD_BINARY, "fmt", "-i", "big.wsd", static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));  // well into the formatting
+        ::kill(pid, signal_number);
+        int raw = 0;
+        ::waitpid(pid, &raw, 0);
+        REQUIRE(WIFEXITED(raw));  // it stopped itself rather than being killed by the signal
+        CHECK(WEXITSTATUS(raw) == expected);
+        CHECK(list_files(dir) == std::vector<std::string>{"big.wsd"});
+        CHECK(read_file(dir / "big.wsd") == big);
+    }
 }
 
 TEST_CASE("fmt refuses a file with syntax errors as check reports it and writes nothing", "[cli][fmt]") {
