@@ -22,17 +22,23 @@ int worse(int a, int b) {
     return rank(b) > rank(a) ? b : a;
 }
 
-// Rewrites `path` with `text`: a new file with its permission bits, renamed over it. A signal
-// stops the write and leaves the file as it was.
+// Rewrites `path` with `text`: a new file with its permission bits, renamed over it. A symbolic
+// link stays: the file it leads to is rewritten. A signal stops the write and leaves the file as
+// it was.
 int rewrite(const std::string& path, const std::string& text, const CancelOnSignal& signals) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    const fs::perms perms = fs::status(path, ec).permissions();
+    std::string target = path;
+    if (fs::is_symlink(path, ec)) {
+        target = fs::canonical(path, ec).string();
+        if (ec) return fail(exit_code::io, "cannot write '" + path + "': " + ec.message());
+    }
+    const fs::perms perms = fs::status(target, ec).permissions();
     AtomicWrite how;
     how.cancel = signals.flag();
     if (!ec) how.mode = static_cast<unsigned>(perms & fs::perms::mask);
     std::string error;
-    if (!write_file_atomic(path, text, error, how))
+    if (!write_file_atomic(target, text, error, how))
         return signals.cancelled() ? exit_code::ok : fail(exit_code::io, error);
     return exit_code::ok;
 }

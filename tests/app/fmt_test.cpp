@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <csignal>
@@ -88,6 +89,28 @@ TEST_CASE("fmt -i rewrites by rename, keeps permissions, leaves canonical files 
     CHECK(r.status == 0);
     CHECK(run_wsd(dir, "fmt -i --check messy.wsd").status == 2);
     CHECK(run_wsd(dir, "fmt -i -").status == 2);
+}
+
+TEST_CASE("fmt -i through a symbolic link rewrites the file it leads to and keeps the link", "[cli][fmt]") {
+    TempDir dir;
+    fs::create_directories(dir / "lib");
+    write_file(dir / "lib/target.wsd", messy);
+    fs::create_symlink("lib/target.wsd", dir / "link.wsd");
+    fs::create_symlink("target.wsd", dir / "lib/near.wsd");
+    RunResult r = run_wsd(dir, "fmt -i link.wsd");
+    CHECK(r.status == 0);
+    CHECK(r.err.empty());
+    CHECK(fs::is_symlink(dir / "link.wsd"));
+    CHECK(fs::read_symlink(dir / "link.wsd") == "lib/target.wsd");
+    CHECK(read_file(dir / "lib/target.wsd") == canonical);
+    write_file(dir / "lib/target.wsd", messy);
+    r = run_wsd(dir, "fmt -i lib/near.wsd");  // a link relative to its own directory
+    CHECK(r.status == 0);
+    CHECK(fs::is_symlink(dir / "lib/near.wsd"));
+    CHECK(read_file(dir / "lib/target.wsd") == canonical);
+    std::vector<std::string> files = list_files(dir);
+    std::sort(files.begin(), files.end());
+    CHECK(files == std::vector<std::string>{"lib", "link.wsd"});
 }
 
 TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no temporary file",
