@@ -53,12 +53,17 @@ nlohmann::ordered_json check_result_json(const std::string& file, bool ok, const
     return {{"file", file}, {"ok", ok}, {"diagnostics", list}};
 }
 
+nlohmann::ordered_json positionless_json(const char* severity, const std::string& file,
+                                         const std::string& message) {
+    return {{"severity", severity},  {"message", message}, {"file", file},
+            {"line", nullptr},       {"column", nullptr},  {"end_line", nullptr},
+            {"end_column", nullptr}, {"help", ""},         {"notes", nlohmann::ordered_json::array()}};
+}
+
 nlohmann::ordered_json unreadable_file_json(const std::string& file, const std::string& message) {
-    nlohmann::ordered_json d = {
-        {"severity", "error"},   {"message", message}, {"file", file},
-        {"line", nullptr},       {"column", nullptr},  {"end_line", nullptr},
-        {"end_column", nullptr}, {"help", ""},         {"notes", nlohmann::ordered_json::array()}};
-    return {{"file", file}, {"ok", false}, {"diagnostics", nlohmann::ordered_json::array({d})}};
+    return {{"file", file},
+            {"ok", false},
+            {"diagnostics", nlohmann::ordered_json::array({positionless_json("error", file, message)})}};
 }
 
 }  // namespace wsd::app

@@ -14,6 +14,11 @@ namespace wsd::app {
 nlohmann::ordered_json check_result_json(const std::string& file, bool ok, const lang::Diagnostics& diags,
                                          const lang::SourceManager& sources);
 
+// A diagnostic without a position (its lines and columns null): an unreadable file, "too many
+// errors, stopping", an unused --define. `severity` is "error" or "warning".
+nlohmann::ordered_json positionless_json(const char* severity, const std::string& file,
+                                         const std::string& message);
+
 // The object for a file that could not be read: one error without a position.
 nlohmann::ordered_json unreadable_file_json(const std::string& file, const std::string& message);
 

@@ -10,6 +10,7 @@
 #include "app/exit_codes.h"
 #include "app/file_args.h"
 #include "app/io_util.h"
+#include "app/scene_setup.h"
 
 namespace wsd::app {
 
@@ -33,9 +34,11 @@ int rank(int status) {
     }
 }
 
-// One file's check for --format json: its result object (the diagnostics are not printed).
-int check_json(const std::string& path, const lang::LoadOptions& options, bool warnings,
+// One file's check for --format json: its result object, with what the text form prints beside
+// the scene's diagnostics (too many errors, unused defines); nothing is printed.
+int check_json(const std::string& path, const lang::LoadOptions& options, const SceneInputArgs& input,
                nlohmann::ordered_json& results) {
+    const bool warnings = !input.no_warnings;
     std::string text, error;
     if (!read_input_file(path, text, error)) {
         results.push_back(unreadable_file_json(display_path(path), error));
@@ -53,7 +56,14 @@ int check_json(const std::string& path, const lang::LoadOptions& options, bool w
             shown.warning(d.span, d.message) = d;
     }
     const bool ok = !all.has_errors() && scene.has_value();
-    results.push_back(check_result_json(display_path(path), ok, shown, sources));
+    nlohmann::ordered_json result = check_result_json(display_path(path), ok, shown, sources);
+    nlohmann::ordered_json& list = result["diagnostics"];
+    if (all.too_many())
+        list.push_back(positionless_json("error", display_path(path), "too many errors, stopping"));
+    if (ok)
+        for (const std::string& message : unread_define_warnings(*options.params, input))
+            list.push_back(positionless_json("warning", display_path(path), message));
+    results.push_back(std::move(result));
     return ok ? exit_code::ok : exit_code::input_error;
 }
 
@@ -71,8 +81,7 @@ int run_check(const CheckArgs& args) {
         options.build = !options.fragment;
         options.params = &params;
         if (args.json) {
-            const int status = check_json(path, options, !args.input.no_warnings, results);
-            if (status == exit_code::ok) warn_unread_defines(params, args.input);
+            const int status = check_json(path, options, args.input, results);
             if (rank(status) > rank(worst)) worst = status;
             continue;
         }

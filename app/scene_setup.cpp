@@ -50,10 +50,17 @@ int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& 
     return exit_code::ok;
 }
 
-void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input) {
-    if (input.no_warnings) return;
+std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input) {
+    std::vector<std::string> messages;
+    if (input.no_warnings) return messages;
     for (const std::string& name : params.unread())
-        warn("--define " + name + " was not used: no param(\"" + name + "\", ...) call read it");
+        messages.push_back("--define " + name + " was not used: no param(\"" + name +
+                           "\", ...) call read it");
+    return messages;
+}
+
+void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input) {
+    for (const std::string& message : unread_define_warnings(params, input)) warn(message);
 }
 
 namespace {

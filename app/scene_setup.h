@@ -48,7 +48,9 @@ struct SceneInputArgs {
 int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& params,
                      const lang::AnimationTime& time = {});
 
-// After a successful load: a warning for each --define that no param() call read.
+// After a successful load: a warning for each --define that no param() call read (none with
+// --no-warnings). The messages, and the function that prints them on stderr.
+std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input);
 void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input);
 
 // The name used in messages for a scene read from stdin ("-").
