@@ -117,7 +117,9 @@ TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no te
           "[cli][fmt][signal]") {
     TempDir dir;
     std::string big;
-    for (int i = 0; i < 400000; ++i)
+    // About two seconds of formatting on an idle two-core machine: the signal, 300 ms in, comes
+    // well after wsd's start and well before the end.
+    for (int i = 0; i < 800000; ++i)
         big += "let a" + std::to_string(i) + "=<1,2,3>*(" + std::to_string(i) + "-1)\n";
     write_file(dir / "big.wsd", big);
     fs::permissions(dir / "big.wsd", fs::perms(0600));
