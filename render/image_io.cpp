@@ -52,10 +52,22 @@ void sink_write(void* context, void* data, int size) {
     if (std::fwrite(data, 1, size_t(size), sink->file) != size_t(size)) sink->error = errno ? errno : EIO;
 }
 
+// The largest value RGBE stores: mantissa 255 at the largest exponent, 255 · 2^119 ≈ 1.7e38. A
+// channel above it would need exponent 128, which the exponent byte wraps to 0 (black).
+constexpr float kRgbeMax = 255.0f * 0x1p119f;
+
+// The film for RGBE: every channel clamped to what RGBE stores, so the brightest pixels stay
+// the brightest the format can say.
+std::vector<float> rgbe_clamped(const Film& film) {
+    std::vector<float> rgb(film.rgb);
+    for (float& v : rgb) v = std::min(v, kRgbeMax);
+    return rgb;
+}
+
 bool encode(ImageFormat format, const Film& film, Sink& sink) {
     const int w = film.width, h = film.height;
     if (format == ImageFormat::Hdr)
-        return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, film.rgb.data()) != 0;
+        return stbi_write_hdr_to_func(sink_write, &sink, w, h, 3, rgbe_clamped(film).data()) != 0;
     if (format == ImageFormat::Pfm) {
         std::string bytes = encode_pfm(film);
         sink_write(&sink, bytes.data(), int(bytes.size()));

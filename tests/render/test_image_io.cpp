@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "render/image_io.h"
@@ -128,6 +129,28 @@ TEST_CASE("PFM round trips exactly, HDR closely", "[image_io]") {
         const float biggest = std::max({film.rgb[p], film.rgb[p + 1], film.rgb[p + 2]});
         CHECK(std::abs(back.rgb[i] - film.rgb[i]) <= biggest / 128 + 1e-6);
     }
+}
+
+TEST_CASE("HDR writing clamps channels above the RGBE maximum instead of wrapping them to black",
+          "[image_io]") {
+    TempDir dir;
+    Film film = gradient(3, 1, 0.0f, 1.0f);
+    film.rgb[0] = 3e38f;  // above 255 · 2^119, the largest RGBE value
+    film.rgb[1] = 1.0f;
+    film.rgb[2] = 1.0f;
+    film.rgb[3] = std::numeric_limits<float>::max();
+    film.rgb[4] = film.rgb[5] = 0.0f;
+    std::string error;
+    REQUIRE(write_image(dir.file("big.hdr"), film, error));
+    Film back;
+    REQUIRE(read_image(dir.file("big.hdr"), back, error));
+    REQUIRE(back.rgb.size() == film.rgb.size());
+    const float largest = 255.0f * 0x1p119f;
+    CHECK(back.rgb[0] == largest);
+    CHECK(back.rgb[3] == largest);
+    CHECK(back.rgb[4] == 0.0f);
+    // The third pixel is untouched.
+    CHECK(std::abs(back.rgb[6] - film.rgb[6]) <= 1.0f / 128);
 }
 
 TEST_CASE("PFM reading: both byte orders, bottom-to-top rows, malformed files", "[image_io]") {
