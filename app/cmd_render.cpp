@@ -228,6 +228,22 @@ std::string frame_output(const RenderArgs& args, const TileRequest& tile, const 
     return job.animated ? frame_path(pattern, job.time.frame) : pattern;
 }
 
+// Checks what can be checked of a frame's outputs before it renders: the image format, the
+// directories the image and --stats-json go to, and that they are not one file. An exit status.
+int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const FrameJob& job) {
+    std::string error;
+    const std::string output = frame_output(args, tile, job);
+    if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
+    if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
+    const std::string stats_path =
+        job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
+    if (stats_path.empty()) return exit_code::ok;
+    if (!output_directory_exists(stats_path, error)) return fail(exit_code::io, error);
+    if (same_path(stats_path, output))
+        return fail(exit_code::usage, "--stats-json names the image's own output '" + output + "'");
+    return exit_code::ok;
+}
+
 // --stats (a table on stdout) and --stats-json FILE: an exit status.
 int report_stats(const RenderArgs& args, const std::string& stats_json, const lang::LoadedScene& loaded,
                  const render::RenderResult& result) {
@@ -286,6 +302,10 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
         std::cerr << "wsd: interrupted\n";
         return signals.exit_status();
     }
+    // The first frame's outputs were checked before the run; each later one's are checked here,
+    // before it renders (a '#' in a directory's name gives each frame its own directory).
+    if (job.index > 0)
+        if (const int status = check_frame_outputs(args, tile, job); status != exit_code::ok) return status;
     const auto start = std::chrono::steady_clock::now();
     const std::string output = frame_output(args, tile, job);
     const render::ImageFormat format = render::format_from_extension(output);
@@ -378,20 +398,13 @@ int run_render(const RenderArgs& args) {
     FramePlan plan;
     if (const int status = plan_frames(args, plan); status != exit_code::ok) return status;
 
-    // Every frame's outputs are checked before the first frame renders.
-    FrameJob job;
-    job.animated = plan.animated;
-    for (const long long frame : plan.frames) {
-        job.time = plan.time_of(frame);
-        const std::string output = frame_output(args, tile, job);
-        if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
-        if (!output_directory_exists(output, error)) return fail(exit_code::io, error);
-        const std::string stats_path = plan.animated ? frame_path(args.stats_json, frame) : args.stats_json;
-        if (!stats_path.empty() && !output_directory_exists(stats_path, error))
-            return fail(exit_code::io, error);
-        if (!stats_path.empty() && same_path(stats_path, output))
-            return fail(exit_code::usage, "--stats-json names the image's own output '" + output + "'");
-    }
+    // The first frame's outputs are checked before anything is read; a later frame's just before
+    // it renders, so that the checks cost the same for any length of range. (No known extension
+    // holds a digit, so a '#' in the extension is an unknown format at the first frame already.)
+    FrameJob first;
+    first.animated = plan.animated;
+    first.time = plan.time_of(plan.from);
+    if (const int status = check_frame_outputs(args, tile, first); status != exit_code::ok) return status;
     RenderRun run;
     if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
     return run_frames(plan,

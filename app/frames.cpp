@@ -61,7 +61,6 @@ int plan_frames(const RenderArgs& args, FramePlan& plan) {
         if (args.clock && !std::isfinite(*args.clock))
             return fail(exit_code::usage, "--clock must be a finite number");
         plan.still_clock = args.clock.value_or(0.0);
-        plan.frames = {0};
         return exit_code::ok;
     }
     if (args.clock)
@@ -74,11 +73,12 @@ int plan_frames(const RenderArgs& args, FramePlan& plan) {
         if (*args.frame < plan.first || *args.frame > plan.last)
             return fail(exit_code::usage,
                         "--frame " + std::to_string(*args.frame) + " is not in --frames " + args.frames);
-        plan.frames = {*args.frame};
+        plan.from = plan.to = *args.frame;
     } else {
-        for (long long n = plan.first; n <= plan.last; ++n) plan.frames.push_back(n);
+        plan.from = plan.first;
+        plan.to = plan.last;
     }
-    if (plan.frames.size() > 1) {
+    if (plan.count() > 1) {
         if (!args.output.empty() && !has_frame_marker(args.output)) return needs_marker("-o", args.output);
         if (!args.stats_json.empty() && !has_frame_marker(args.stats_json))
             return needs_marker("--stats-json", args.stats_json);
@@ -116,14 +116,14 @@ std::string FrameJob::progress_label() const {
 int run_frames(const FramePlan& plan, const std::function<int(const FrameJob&)>& render_frame) {
     FrameJob job;
     job.animated = plan.animated;
-    job.count = plan.frames.size();
-    for (size_t i = 0; i < plan.frames.size(); ++i) {
-        job.index = i;
-        job.time = plan.time_of(plan.frames[i]);
+    job.count = plan.count();
+    for (long long n = plan.from; n <= plan.to; ++n) {
+        job.index = static_cast<size_t>(n - plan.from);
+        job.time = plan.time_of(n);
         if (const int status = render_frame(job); status != exit_code::ok) {
-            if (i > 0)
-                std::cerr << "wsd: stopped at frame " << plan.frames[i] << "; frames " << plan.frames.front()
-                          << " to " << plan.frames[i - 1] << " were written\n";
+            if (n > plan.from)
+                std::cerr << "wsd: stopped at frame " << n << "; frames " << plan.from << " to " << n - 1
+                          << " were written\n";
             return status;
         }
     }

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <functional>
 #include <string>
-#include <vector>
 
 #include "app/commands.h"
 #include "lang/builtins.h"
@@ -19,9 +18,11 @@ constexpr long long max_frame_number = 999999999;
 struct FramePlan {
     bool animated = false;          // --frames was given
     long long first = 0, last = 0;  // its range A-B
-    std::vector<long long> frames;  // the frames to render, in order (all of A-B, or --frame N)
+    long long from = 0, to = 0;     // the frames to render, in order: all of A-B, or --frame N
     double still_clock = 0;         // --clock X, for a still
 
+    // How many frames the run renders.
+    size_t count() const { return static_cast<size_t>(to - from + 1); }
     // `clock` and `frame` of frame n: n and (n − A)/(B − A), clock 0 when A = B.
     lang::AnimationTime time_of(long long n) const;
 };
@@ -54,7 +55,8 @@ struct FrameJob {
 };
 
 // Renders every frame of `plan` in order with `render_frame`, stopping at the first that does not
-// return 0 (that status is the run's; the frames before it stay written).
+// return 0 (that status is the run's; the frames before it stay written, and for frames wsd says
+// where it stopped).
 int run_frames(const FramePlan& plan, const std::function<int(const FrameJob&)>& render_frame);
 
 }  // namespace wsd::app

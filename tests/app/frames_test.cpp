@@ -242,6 +242,31 @@ TEST_CASE("bad frame options are usage errors, found before anything renders", "
     CHECK_FALSE(fs::exists(dir / "d1"));
 }
 
+TEST_CASE("the checks before the first frame cost the same for any length of range", "[frames][usage]") {
+    TempDir dir;
+    write_file(dir / "c.wsd", clock_scene);
+    // A billion frames: a missing directory fails at once, within a small address space.
+    const std::string limits = "ulimit -v 1000000 && timeout 20";
+    RunResult r = run_wsd(dir, "render c.wsd --quiet --frames 0-999999999 -o 'zz#/x-#.png'", limits);
+    CHECK(r.status == 3);
+    CHECK(r.err.find("zz0") != std::string::npos);
+    r = run_wsd(dir, "render c.wsd --quiet --frames 0-999999999 -o 'big/x-#.png'", limits);
+    CHECK(r.status == 3);
+    CHECK(r.err.find("'big' does not exist") != std::string::npos);
+    r = run_wsd(dir, "render c.wsd --quiet --frames 0-999999999 -o 'x-#.xyz'", limits);
+    CHECK(r.status == 2);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"c.wsd"});
+
+    // A frame's own directory is checked just before that frame: the frames before it stay.
+    fs::create_directory(dir / "d1");
+    r = run_wsd(dir, "render c.wsd --quiet --frames 1-3 -o 'd#/f.pfm'");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("directory 'd2' does not exist") != std::string::npos);
+    CHECK(r.err.find("stopped at frame 2; frames 1 to 1 were written") != std::string::npos);
+    CHECK(fs::exists(dir / "d1/f.pfm"));
+    CHECK_FALSE(fs::exists(dir / "d2"));
+}
+
 TEST_CASE("the progress label names the frame and the run's fraction counts whole frames",
           "[frames][progress]") {
     wsd::app::FrameJob job;
