@@ -185,11 +185,15 @@ struct RenderRun {
     bool defines_checked = false;          // unread --define warnings come after the first frame only
 };
 
-// Loads the scene at `time` with the command line's defines and overrides: an exit status.
-int load_for_render(const RenderArgs& args, RenderRun& run, const lang::AnimationTime& time,
-                    lang::SourceManager& sources, std::optional<lang::LoadedScene>& loaded) {
+// Loads the frame's scene with the command line's defines and overrides: an exit status.
+int load_for_render(const RenderArgs& args, RenderRun& run, const FrameJob& job, lang::SourceManager& sources,
+                    std::optional<lang::LoadedScene>& loaded) {
+    const lang::AnimationTime& time = job.time;
     lang::ParamTable params;
-    if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok) return s;
+    // A --define that fails at the run's first frame is a usage error, as for a still; one that
+    // fails only at a later frame (it reads `frame` or `clock`) is that frame's failure.
+    if (const int s = evaluate_defines(args.input.defines, params, time); s != exit_code::ok)
+        return job.index > 0 ? exit_code::input_error : s;
     lang::LoadOptions load_options;
     load_options.params = &params;
     load_options.time = time;
@@ -315,7 +319,7 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
 
     lang::SourceManager sources;
     std::optional<lang::LoadedScene> loaded;
-    if (const int status = load_for_render(args, run, job.time, sources, loaded); status != exit_code::ok) {
+    if (const int status = load_for_render(args, run, job, sources, loaded); status != exit_code::ok) {
         if (!signals.cancelled()) return status;
         std::cerr << "wsd: interrupted; no image written\n";
         return signals.exit_status();

@@ -121,9 +121,12 @@ int run_frames(const FramePlan& plan, const std::function<int(const FrameJob&)>&
         job.index = static_cast<size_t>(n - plan.from);
         job.time = plan.time_of(n);
         if (const int status = render_frame(job); status != exit_code::ok) {
-            if (n > plan.from)
-                std::cerr << "wsd: stopped at frame " << n << "; frames " << plan.from << " to " << n - 1
-                          << " were written\n";
+            if (!plan.animated) return status;
+            std::cerr << "wsd: stopped at frame " << n << "; ";
+            if (n == plan.from)
+                std::cerr << "no frame was written\n";
+            else
+                std::cerr << "frames " << plan.from << " to " << n - 1 << " were written\n";
             return status;
         }
     }

@@ -173,6 +173,33 @@ TEST_CASE("a failing frame stops the run; the frames before it stay", "[frames][
     CHECK(read_file(dir / "again.png") == read_file(dir / "f-2.png"));
 }
 
+TEST_CASE("a --define that fails only at a later frame fails that frame", "[frames][define]") {
+    TempDir dir;
+    write_file(dir / "p.wsd",
+               "settings { width 2  height 2  background <param(\"r\", 0), 0, 0> }\n"
+               "camera { position <0, 0, -5>  look_at <0, 0, 0> }\n");
+    RunResult r = run_wsd(dir, "render p.wsd --quiet --frames 1-3 -o 'f-#.pfm' -D 'r=0.3/(3-frame)'");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("--define r: division by zero") != std::string::npos);
+    CHECK(r.err.find("stopped at frame 3; frames 1 to 2 were written") != std::string::npos);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"f-1.pfm", "f-2.pfm", "p.wsd"});
+    // At the run's first frame nothing has rendered: a usage error, as for a still, and wsd says
+    // where it stopped as for any frame.
+    r = run_wsd(dir, "render p.wsd --quiet --frames 3-4 -o 'g-#.pfm' -D 'r=0.3/(3-frame)'");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("stopped at frame 3; no frame was written") != std::string::npos);
+    CHECK(run_wsd(dir, "render p.wsd --quiet -o still.pfm -D 'r=0.3/(3-3)'").status == 2);
+}
+
+TEST_CASE("a run whose first frame fails says where it stopped", "[frames][atomic]") {
+    TempDir dir;
+    write_file(dir / "m.wsd", moving_scene() + "if frame == 1 { sphere { center <0, 0, 0>  radius -1 } }\n");
+    const RunResult r = run_wsd(dir, "render m.wsd --quiet --frames 1-5 -o 'f-#.png'");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("stopped at frame 1; no frame was written") != std::string::npos);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"m.wsd"});
+}
+
 TEST_CASE("a warning that every frame gives is printed once per run", "[frames][warnings]") {
     TempDir dir;
     write_file(dir / "c.wsd", clock_scene);  // no lights: a warning at every frame
