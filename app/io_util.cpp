@@ -62,6 +62,16 @@ bool output_directory_exists(const std::string& path, std::string& error) {
     if (dir.empty()) dir = ".";
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) {
+        // The nearest part of the directory's path that exists says why: a file where a directory
+        // should be, or nothing there.
+        for (fs::path part = dir; !part.empty(); part = part.parent_path()) {
+            const fs::file_status status = fs::status(part, ec);
+            if (fs::exists(status) && !fs::is_directory(status)) {
+                error = "cannot write '" + path + "': '" + part.string() + "' is not a directory";
+                return false;
+            }
+            if (part == part.parent_path()) break;
+        }
         error = "cannot write '" + path + "': directory '" + dir.string() + "' does not exist";
         return false;
     }

@@ -152,6 +152,14 @@ TEST_CASE("a failed render leaves no output and no temporary file", "[render][at
     r = run_wsd(dir, "render s.wsd -o out.png --stats-json no/such/stats.json --quiet");
     CHECK(r.status == 3);
     CHECK_FALSE(fs::exists(dir / "out.png"));
+    // A file where the output's directory should be is named as such.
+    r = run_wsd(dir, "render s.wsd -o s.wsd/x.png --quiet");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("'s.wsd' is not a directory") != std::string::npos);
+    r = run_wsd(dir, "render s.wsd -o s.wsd/sub/x.png --quiet");
+    CHECK(r.err.find("'s.wsd' is not a directory") != std::string::npos);
+    r = run_wsd(dir, "render s.wsd -o no/x.png --quiet");
+    CHECK(r.err.find("directory 'no' does not exist") != std::string::npos);
 
     // An existing output is replaced whole or not at all.
     write_file(dir / "keep.png", "old");
