@@ -59,6 +59,34 @@ CLI::Validator positive_number(double hi, const std::string& hi_text) {
         "NUMBER > 0");
 }
 
+// Any number strtod reads, whole (whether it may be infinite or NaN is the command's to say).
+const CLI::Validator a_number(
+    [](std::string& text) -> std::string {
+        char* end = nullptr;
+        (void)std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() ||
+            std::isspace(static_cast<unsigned char>(text[0])))
+            return "'" + text + "' is not a number";
+        return "";
+    },
+    "NUMBER");
+
+// CLI11's own wording of a parse error, in wsd's where CLI11's says little: an option given more
+// than once ("--aov: At Most 1 required but received 2") and a value it could not convert.
+std::string parse_error_message(const CLI::ParseError& e) {
+    const std::string text = e.what();
+    const std::string at_most = ": At Most 1 required but received ";
+    if (const size_t at = text.find(at_most); at != std::string::npos)
+        return text.substr(0, at) + " was given " + text.substr(at + at_most.size()) +
+               " times; it takes one value";
+    const std::string convert = "Could not convert: ", equals = " = ";
+    if (text.rfind(convert, 0) == 0)
+        if (const size_t at = text.find(equals, convert.size()); at != std::string::npos)
+            return text.substr(convert.size(), at - convert.size()) + ": '" +
+                   text.substr(at + equals.size()) + "' is not a value it takes";
+    return text;
+}
+
 void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
     cmd.add_option("-D,--define", input.defines,
                    "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
@@ -200,7 +228,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
         ->check(non_empty);
     cmd->add_option("--frame", args.frame, "N: render only frame N of --frames (a farm's task)")
         ->check(integer_in(0, max_frame_number));
-    cmd->add_option("--clock", args.clock, "X: the value of clock in a still (default 0)");
+    cmd->add_option("--clock", args.clock, "X: the value of clock in a still (default 0)")->check(a_number);
     return cmd;
 }
 
@@ -316,7 +344,7 @@ int run_cli(int argc, char** argv) {
             app.exit(e);  // --help, --version
             return exit_code::ok;
         }
-        std::cerr << "wsd: error: " << e.what() << '\n';
+        std::cerr << "wsd: error: " << parse_error_message(e) << '\n';
         usage_hint();
         return exit_code::usage;
     }

@@ -223,3 +223,27 @@ TEST_CASE("an integer option given something else says it is not an integer", "[
     CHECK(r.status == 2);
     CHECK(r.err.find("--width: 0 is not in the range 1 to 100000") != std::string::npos);
 }
+
+TEST_CASE("an option given twice, and a number option given something else, say so in wsd's words", "[cli]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    struct Case {
+        const char* args;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"--aov albedo --aov depth", "--aov was given 2 times; it takes one value"},
+        {"--frames 1-2 --frames 1-3", "--frames was given 2 times; it takes one value"},
+        {"--clock 0.1 --clock 0.2 --clock 0.3", "--clock was given 3 times; it takes one value"},
+        {"--clock abc", "--clock: 'abc' is not a number"},
+        {"--clock ''", "--clock: '' is not a number"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.args);
+        const RunResult r = run_wsd(dir, std::string("render s.wsd ") + c.args);
+        CHECK(r.status == 2);
+        CHECK(r.err.find(c.message) != std::string::npos);
+        CHECK(r.err.find("At Most") == std::string::npos);
+        CHECK(r.err.find("Could not convert") == std::string::npos);
+    }
+}
