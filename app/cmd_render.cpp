@@ -232,9 +232,17 @@ std::string frame_output(const RenderArgs& args, const TileRequest& tile, const 
     return job.animated ? frame_path(pattern, job.time.frame) : pattern;
 }
 
+// Whether the frame's image goes to a tile file (which carries its auxiliary images itself).
+bool writes_tile_file(const TileRequest& tile, const std::string& output) {
+    return (tile.count > 0 || tile.region.has_value()) &&
+           render::format_from_extension(output) == render::ImageFormat::Pfm;
+}
+
 // Checks what can be checked of a frame's outputs before it renders: the image format, the
-// directories the image and --stats-json go to, and that they are not one file. An exit status.
-int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const FrameJob& job) {
+// directories the image and --stats-json go to, and that --stats-json names none of the files
+// the image is written to (its auxiliary images' included). An exit status.
+int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const AovSelection& aovs,
+                        const FrameJob& job) {
     std::string error;
     const std::string output = frame_output(args, tile, job);
     if (!known_image_format(output)) return fail(exit_code::usage, unknown_format_message(output));
@@ -243,8 +251,15 @@ int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const F
         job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
     if (stats_path.empty()) return exit_code::ok;
     if (!output_directory_exists(stats_path, error)) return fail(exit_code::io, error);
-    if (same_path(stats_path, output))
-        return fail(exit_code::usage, "--stats-json names the image's own output '" + output + "'");
+    const std::vector<std::string> written =
+        writes_tile_file(tile, output) ? std::vector<std::string>{output} : output_paths(output, aovs);
+    for (const std::string& path : written) {
+        if (!same_path(stats_path, path)) continue;
+        if (path == output)
+            return fail(exit_code::usage, "--stats-json names the image's own output '" + output + "'");
+        return fail(exit_code::usage,
+                    "--stats-json names the auxiliary image '" + path + "' of '" + output + "'");
+    }
     return exit_code::ok;
 }
 
@@ -309,10 +324,10 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
     // The first frame's outputs were checked before the run; each later one's are checked here,
     // before it renders (a '#' in a directory's name gives each frame its own directory).
     if (job.index > 0)
-        if (const int status = check_frame_outputs(args, tile, job); status != exit_code::ok) return status;
+        if (const int status = check_frame_outputs(args, tile, aovs, job); status != exit_code::ok)
+            return status;
     const auto start = std::chrono::steady_clock::now();
     const std::string output = frame_output(args, tile, job);
-    const render::ImageFormat format = render::format_from_extension(output);
     const std::string stats_path =
         job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
     std::string error;
@@ -357,7 +372,7 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
         return signals.exit_status() ? signals.exit_status() : exit_code::sigint;
     }
 
-    const bool tile_file = (tile.count > 0 || tile.region.has_value()) && format == render::ImageFormat::Pfm;
+    const bool tile_file = writes_tile_file(tile, output);
     if (tile_file) {
         TileMeta meta = tile_meta(args, tile, job, *loaded, sources);
         meta.aovs = aovs;
@@ -408,7 +423,8 @@ int run_render(const RenderArgs& args) {
     FrameJob first;
     first.animated = plan.animated;
     first.time = plan.time_of(plan.from);
-    if (const int status = check_frame_outputs(args, tile, first); status != exit_code::ok) return status;
+    if (const int status = check_frame_outputs(args, tile, aovs, first); status != exit_code::ok)
+        return status;
     RenderRun run;
     if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
     return run_frames(plan,

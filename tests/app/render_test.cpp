@@ -105,6 +105,27 @@ TEST_CASE("--stats-json that would overwrite the image, or names a directory, fa
     CHECK_FALSE(fs::exists(dir / "a.png"));
 }
 
+TEST_CASE("--stats-json that would overwrite an auxiliary image fails before rendering", "[render][aov]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene(3, 4));
+    RunResult r = run_wsd(dir, "render s.wsd -o c2.png --quiet --aov depth --stats-json c2.depth.pfm");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--stats-json names the auxiliary image 'c2.depth.pfm' of 'c2.png'") !=
+          std::string::npos);
+    r = run_wsd(dir, "render s.wsd -o c2.png --quiet --aov albedo,normal --stats-json ./c2.normal.pfm");
+    CHECK(r.status == 2);
+    // The names of frames too.
+    r = run_wsd(dir,
+                "render s.wsd -o 'f-#.png' --frames 1-2 --quiet --aov depth --stats-json 'f-#.depth.pfm'");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("'f-1.depth.pfm'") != std::string::npos);
+    CHECK(list_files(dir) == std::vector<std::string>{"s.wsd"});
+    // A tile file carries its auxiliary images: no sibling is written, so the name is free.
+    r = run_wsd(dir, "render s.wsd --tile 1/2 -o t.pfm --quiet --aov depth --stats-json t.depth.pfm");
+    CHECK(r.status == 0);
+    CHECK(read_file(dir / "t.depth.pfm").find("\"camera_rays\"") != std::string::npos);
+}
+
 TEST_CASE("samples that overflow single precision are named in a warning, even with --quiet", "[render]") {
     TempDir dir;
     // Each value fits a float; their product (ambient × colour) does not.
