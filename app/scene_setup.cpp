@@ -130,7 +130,9 @@ uint64_t scene_text_hash(const lang::SourceManager& sources) {
     return h;
 }
 
-std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights) {
+std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights,
+                                 const std::optional<double>& target_error,
+                                 const std::optional<double>& time_limit) {
     const render::Settings& s = spec.settings;
     std::ostringstream out;
     out.precision(17);
@@ -143,6 +145,10 @@ std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_li
     for (const render::LightSpec& light : spec.lights)
         out << light.samples_u << "x" << light.samples_v << (light.adaptive ? "a" : "") << ",";
     if (s.indirect_samples > 0) out << ";indirect=" << s.indirect_samples << "x" << s.indirect_bounces;
+    // A progressive render takes other samples than the grid; without either option the text
+    // stays what it was before progressive rendering existed.
+    if (target_error) out << ";target_error=" << *target_error;
+    if (time_limit) out << ";time_limit=" << *time_limit;
     return out.str();
 }
 

@@ -72,7 +72,11 @@ int load_scene_text(const std::string& path, const std::string& text, const lang
 // FNV-1a 64 of every source file the load read (the scene and its includes), in order.
 uint64_t scene_text_hash(const lang::SourceManager& sources);
 
-// A canonical text of every setting that changes pixels, except the seed.
-std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights);
+// A canonical text of every setting that changes pixels, except the seed: the scene's settings
+// with the command line's overrides, --adaptive-lights and the progressive options
+// (--target-error, --time-limit).
+std::string settings_fingerprint(const render::SceneSpec& spec, bool adaptive_lights,
+                                 const std::optional<double>& target_error,
+                                 const std::optional<double>& time_limit);
 
 }  // namespace wsd::app

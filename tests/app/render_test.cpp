@@ -305,3 +305,28 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
     std::sort(after.begin(), after.end());
     CHECK(after == before);
 }
+
+TEST_CASE("merge refuses tiles rendered with other progressive options", "[tiles][progressive]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene(5, 8));
+    const auto tile = [&](int i, const std::string& options, const std::string& name) {
+        REQUIRE(
+            run_wsd(dir, "render s.wsd --quiet --tile " + std::to_string(i) + "/2 " + options + " -o " + name)
+                .status == 0);
+    };
+    tile(1, "--target-error 0.01", "e1.pfm");
+    tile(2, "--target-error 0.01", "e2.pfm");
+    tile(2, "--target-error 0.02", "other-target.pfm");
+    tile(2, "", "grid.pfm");
+    tile(2, "--time-limit 100", "timed.pfm");
+    tile(2, "--target-error 0.01 --time-limit 100", "both.pfm");
+    CHECK(run_wsd(dir, "merge e1.pfm e2.pfm -o merged.pfm").status == 0);
+    for (const char* other : {"other-target.pfm", "grid.pfm", "timed.pfm", "both.pfm"}) {
+        INFO(other);
+        const RunResult r = run_wsd(dir, std::string("merge e1.pfm ") + other + " -o bad.pfm");
+        CHECK(r.status == 1);
+        CHECK(r.err.find(std::string("tile '") + other + "' was rendered with different settings") !=
+              std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir / "bad.pfm"));
+}
