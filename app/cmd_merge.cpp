@@ -55,8 +55,8 @@ std::string frame_name(const TileMeta& meta) {
     return meta.frame < 0 ? std::string("a still") : "frame " + std::to_string(meta.frame);
 }
 
-// Every tile must agree with the first on the scene, the frame and its clock, the settings, the
-// size and the seed.
+// Every tile must agree with the first on the scene and its --define values, the frame and its
+// clock, the settings, the size and the seed.
 int check_consistency(const std::vector<Tile>& tiles) {
     const Tile& first = tiles.front();
     for (const Tile& t : tiles) {
@@ -64,6 +64,10 @@ int check_consistency(const std::vector<Tile>& tiles) {
             return fail(exit_code::input_error,
                         "tile '" + t.path + "' was rendered from a different scene than '" + first.path +
                             "' (scene hash " + t.meta.scene_hash + " vs " + first.meta.scene_hash + ")");
+        if (t.meta.defines_hash != first.meta.defines_hash)
+            return fail(
+                exit_code::input_error,
+                "tile '" + t.path + "' was rendered with other --define values than '" + first.path + "'");
         if (t.meta.seed != first.meta.seed)
             return fail(exit_code::input_error, "tile '" + t.path + "' was rendered with seed " +
                                                     std::to_string(t.meta.seed) + ", but '" + first.path +

@@ -304,6 +304,8 @@ TileMeta tile_meta(const RenderArgs& args, const TileRequest& tile, const FrameJ
     meta.scene_hash = hex64(scene_text_hash(sources));
     meta.settings_hash = hex64(
         fnv1a64(settings_fingerprint(loaded.spec, args.adaptive_lights, args.target_error, args.time_limit)));
+    if (!args.input.defines.empty())
+        meta.defines_hash = hex64(fnv1a64(defines_fingerprint(args.input.defines)));
     meta.seed = settings.seed;
     meta.tile_index = tile.index;
     meta.tile_count = tile.count;

@@ -3,6 +3,7 @@
 #include "app/scene_setup.h"
 
 #include <iostream>
+#include <map>
 #include <new>
 #include <sstream>
 
@@ -48,6 +49,17 @@ int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& 
         params.set(name, std::move(*value));
     }
     return exit_code::ok;
+}
+
+std::string defines_fingerprint(const std::vector<std::string>& defines) {
+    std::map<std::string, std::string> last;
+    for (const std::string& define : defines) {
+        const size_t eq = define.find('=');
+        last[define.substr(0, eq)] = define;
+    }
+    std::string out;
+    for (const auto& [name, define] : last) out += std::to_string(define.size()) + ":" + define + ";";
+    return out;
 }
 
 std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input) {

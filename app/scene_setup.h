@@ -72,6 +72,10 @@ int load_scene_text(const std::string& path, const std::string& text, const lang
 // FNV-1a 64 of every source file the load read (the scene and its includes), in order.
 uint64_t scene_text_hash(const lang::SourceManager& sources);
 
+// A canonical text of the --define values: for each name, the last NAME=EXPR given (the one
+// `param` reads), in name order; "" without any.
+std::string defines_fingerprint(const std::vector<std::string>& defines);
+
 // A canonical text of every setting that changes pixels, except the seed: the scene's settings
 // with the command line's overrides, --adaptive-lights and the progressive options
 // (--target-error, --time-limit).

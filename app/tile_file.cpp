@@ -64,6 +64,11 @@ bool read_trailer(const Json& fields, TileMeta& meta, std::string& error) {
         return missing("no 'scene_hash' or 'settings_hash' string");
     meta.scene_hash = scene_hash.get<std::string>();
     meta.settings_hash = settings_hash.get<std::string>();
+    meta.defines_hash.clear();
+    if (const Json& defines_hash = field(fields, "defines_hash"); !defines_hash.is_null()) {
+        if (!defines_hash.is_string()) return missing("'defines_hash' is not a string");
+        meta.defines_hash = defines_hash.get<std::string>();
+    }
     if (!whole_number(field(fields, "seed"), 0, 4294967295.0, meta.seed))
         return missing("no 'seed' in [0, 4294967295]");
     if (int t[2]; whole_numbers(field(fields, "tile"), 2, t)) {
@@ -134,6 +139,8 @@ std::string encode_tile(const render::Film& film, const render::AovFilm& aovs, c
                  {"settings_hash", meta.settings_hash},
                  {"scene", meta.scene}};
     if (meta.aovs.any()) json["aovs"] = meta.aovs.names();
+    // Without --define the bytes stay those of a tile before the hash of defines existed.
+    if (!meta.defines_hash.empty()) json["defines_hash"] = meta.defines_hash;
     // A still's tile has neither: its bytes stay those of a tile before animation existed.
     if (meta.frame >= 0) json["frame"] = meta.frame;
     if (meta.frame >= 0 || meta.clock != 0) json["clock"] = meta.clock;

@@ -18,6 +18,7 @@ struct TileMeta {
     render::Region region;                // this tile's pixels in the whole image
     std::string scene_hash;               // FNV-1a 64 of the scene text and every included file
     std::string settings_hash;            // FNV-1a 64 of every effective setting but the seed
+    std::string defines_hash;             // FNV-1a 64 of the --define values; "" without any
     uint32_t seed = 0;
     int tile_index = 0, tile_count = 0;  // from --tile I/N; 0 for --region
     std::string scene;                   // the scene path as given, for messages

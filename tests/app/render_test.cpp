@@ -330,3 +330,32 @@ TEST_CASE("merge refuses tiles rendered with other progressive options", "[tiles
     }
     CHECK_FALSE(fs::exists(dir / "bad.pfm"));
 }
+
+TEST_CASE("merge refuses tiles rendered with other --define values", "[tiles][define]") {
+    TempDir dir;
+    write_file(dir / "p.wsd", tiny_scene(5, 8) +
+                                  "sphere { center <1, 0.5, 0>  radius 0.5  material { color param(\"c\", "
+                                  "<0, 1, 0>) } }\n");
+    const auto tile = [&](int i, const std::string& defines, const std::string& name) {
+        REQUIRE(
+            run_wsd(dir, "render p.wsd --quiet --tile " + std::to_string(i) + "/2 " + defines + " -o " + name)
+                .status == 0);
+    };
+    tile(1, "-D 'c=<1,0,0>'", "red1.pfm");
+    tile(2, "-D 'c=<1,0,0>'", "red2.pfm");
+    tile(2, "-D 'c=<0,0,1>'", "blue2.pfm");
+    tile(2, "", "none2.pfm");
+    tile(2, "-D 'c=<0,0,1>' -D 'c=<1,0,0>'", "last2.pfm");  // the last value of a name is the one read
+    CHECK(run_wsd(dir, "merge red1.pfm red2.pfm -o merged.pfm").status == 0);
+    CHECK(run_wsd(dir, "merge red1.pfm last2.pfm -o merged.pfm").status == 0);
+    for (const char* other : {"blue2.pfm", "none2.pfm"}) {
+        INFO(other);
+        const RunResult r = run_wsd(dir, std::string("merge red1.pfm ") + other + " -o bad.pfm");
+        CHECK(r.status == 1);
+        CHECK(r.err.find(std::string("tile '") + other + "' was rendered with other --define values") !=
+              std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir / "bad.pfm"));
+    // A tile without --define keeps the trailer it always had.
+    CHECK(read_file(dir / "none2.pfm").find("defines_hash") == std::string::npos);
+}
