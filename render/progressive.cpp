@@ -178,6 +178,18 @@ void write_film(const Passes& p, RenderResult& result) {
     }
 }
 
+// Whether the rendered region met `target`: every pixel by the estimate that decides (a pixel
+// that stopped at max_samples, or at the deadline, above it did not) and the image by the
+// estimate that is reported.
+bool target_met(const Passes& p, double target, double rmse) {
+    if (!(rmse <= target)) return false;
+    for (int y = p.inner.y0; y < p.inner.y1; ++y)
+        for (int x = p.inner.x0; x < p.inner.x1; ++x)
+            if (!(p.pixels[p.index(x, y)].display_variance(PixelEstimate::Decide) <= target * target))
+                return false;
+    return true;
+}
+
 void report(const Passes& p, ProgressiveReport& r) {
     r.used = true;
     r.estimated_rmse = p.inner_rmse();
@@ -307,9 +319,7 @@ bool render_progressive(const Scene& scene, const RenderOptions& options, const 
     if (!complete) return false;
     write_film(p, result);
     report(p, out);
-    if (prog.target_error > 0) {
-        out.target_reached = !out.deadline_reached || plan_pass(p, prog.target_error, prog) == 0;
-    }
+    if (prog.target_error > 0) out.target_reached = target_met(p, prog.target_error, out.estimated_rmse);
     return true;
 }
 

@@ -64,7 +64,7 @@ struct ProgressiveReport {
     double estimated_rmse = 0;  // display space, over the region's pixels and channels
     uint32_t samples_min = 0, samples_median = 0, samples_max = 0;  // per pixel
     uint64_t samples_total = 0;
-    bool target_reached = false;    // every pixel at most the target (or at max_samples)
+    bool target_reached = false;    // every pixel's estimate and the image's at most the target
     bool deadline_reached = false;  // passes stopped because time was up
     bool first_pass_over = false;   // the first pass alone ended after the deadline
     std::vector<float> samples;     // samples per pixel, row-major over the region

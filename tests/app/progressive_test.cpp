@@ -90,6 +90,27 @@ TEST_CASE("a targeted render: statistics, samples map, and tiles that merge byte
     CHECK(read_file(dir / "merged.samples.pfm") == read_file(dir / "whole.samples.pfm"));
 }
 
+TEST_CASE("a target that the pixels at the sample cap do not meet is reported as not reached",
+          "[progressive]") {
+    TempDir dir;
+    write_file(dir / "s.wsd",
+               "settings { width 16  height 12  supersamples 1  background <0.2, 0.3, 0.4> }\n"
+               "camera { position <0, 1, -5>  look_at <0, 0.5, 0>  fov 45 }\n"
+               "light point { position <3, 5, -4> }\n"
+               "light area { position <-3, 6, -4>  u <1, 0, 0>  v <0, 0, 1>  samples 2 }\n"
+               "sphere { center <0, 0.6, 0>  radius 0.6  material { color <0.9, 0.2, 0.1> } }\n"
+               "plane { normal <0, 1, 0>  distance 0  material { color <0.8, 0.8, 0.8> } }\n");
+    const RunResult r =
+        run_wsd(dir, "render s.wsd --target-error 0.0001 -o s.pfm --stats --stats-json s.json");
+    REQUIRE(r.status == 0);
+    const auto json = nlohmann::json::parse(read_file(dir / "s.json"));
+    CHECK(json["samples_per_pixel"]["max"] == 1024);
+    CHECK(json["time_limit_reached"] == false);
+    CHECK(json["target_reached"] == false);
+    CHECK(r.out.find("(target 0.0001, not reached)") != std::string::npos);
+    CHECK(r.err.find("the target was not reached") != std::string::npos);
+}
+
 TEST_CASE("a time limit shorter than the first pass gives the first pass, complete", "[progressive]") {
     TempDir dir;
     // 2 × 10⁻⁹ s: over before the first pass has begun.

@@ -216,6 +216,20 @@ TEST_CASE("with a target the image is the same for any thread count and any regi
     CHECK(tighter.progressive.estimated_rmse < one.progressive.estimated_rmse);
 }
 
+TEST_CASE("a target that pixels stop short of at the sample cap is not reached", "[progressive]") {
+    const auto spec = soft_scene(12, 9);
+    RenderOptions o = progressive(0.0001);
+    o.progressive->max_samples = 32;  // the cap, far below what 0.0001 needs
+    const auto r = render_spec(spec, o);
+    CHECK(r.progressive.samples_max == 32);
+    CHECK_FALSE(r.progressive.deadline_reached);
+    CHECK_FALSE(r.progressive.target_reached);
+    // With a cap that lets every pixel meet a loose target, it is reached.
+    const auto loose = render_spec(spec, progressive(0.05));
+    CHECK(loose.progressive.target_reached);
+    CHECK(loose.progressive.estimated_rmse <= 0.05);
+}
+
 TEST_CASE("a deadline passed during the first pass gives that pass, every pixel sampled", "[progressive]") {
     const auto spec = soft_scene(37, 29);
     RenderOptions o = progressive(0);
