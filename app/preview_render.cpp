@@ -22,6 +22,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The caustic photons of a coarse stage at most: a big photon map is shot for the full size only.
+constexpr int kCoarsePhotons = 20000;
+
 void append_bytes(void* context, void* data, int size) {
     if (size > 0) static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
 }
@@ -59,6 +62,7 @@ void apply_stage(render::SceneSpec& spec, const PreviewStage& stage, const rende
     if (!stage.coarse) return;
     s.supersamples = 1;
     s.adaptive_supersampling = false;
+    s.caustic_photons = std::min(s.caustic_photons, kCoarsePhotons);
     for (render::LightSpec& light : spec.lights) {
         light.samples_u = std::min(light.samples_u, stage.light_grid);
         light.samples_v = std::min(light.samples_v, stage.light_grid);
@@ -155,6 +159,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     lang::LoadOptions options;
     options.threads = threads_;
     options.images = &images;
+    options.cancel = &cancel_;  // a save or Ctrl-C abandons a long evaluation or photon map
     options.adjust = [&](render::SceneSpec& spec) {
         full = spec.settings;
         lights = spec.lights;
@@ -169,6 +174,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     } catch (const std::exception& e) {
         diags.error({}, std::string("the scene could not be loaded: ") + e.what());
     }
+    if (superseded()) return;
     const bool ok = loaded && !diags.has_errors();
     if (ok) {
         publish_files(named_files(scene_, sources, &*loaded), false);
@@ -177,6 +183,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         // build still names the files to watch for the fix.
         lang::LoadOptions unbuilt;
         unbuilt.build = false;
+        unbuilt.cancel = &cancel_;
         lang::SourceManager unbuilt_sources;
         lang::Diagnostics unbuilt_diags;
         std::optional<lang::LoadedScene> described;
@@ -185,6 +192,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         } catch (const std::exception&) {
             described.reset();
         }
+        if (superseded()) return;
         if (described && !unbuilt_diags.has_errors())
             publish_files(named_files(scene_, unbuilt_sources, &*described), true);
         else
@@ -214,7 +222,8 @@ void PreviewRenderer::render_generation(uint64_t generation) {
             render::SceneSpec stage_spec = loaded->spec;
             apply_stage(stage_spec, st, full, lights);
             std::vector<render::SpecError> errors;
-            scene = render::build_scene(stage_spec, errors, true, threads_, &images);
+            scene = render::build_scene(stage_spec, errors, true, threads_, &images, &cancel_);
+            if (superseded()) return;
             if (!scene) {  // the load built the same description, so this is not expected
                 state_.set_diagnostics(scene_ + ": " + (errors.empty() ? "build failed" : errors[0].message) +
                                        "\n");

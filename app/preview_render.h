@@ -1,7 +1,7 @@
 // The render loop of a live preview: each request (the first, then one per save) loads the scene
 // afresh and renders it in stages, coarse to full size, publishing each stage's image into the
-// PreviewState; a new request cancels the render in flight. A scene with errors publishes its
-// diagnostics and keeps the last good image.
+// PreviewState; a new request cancels the load or render in flight (a long evaluation and a
+// photon map alike). A scene with errors publishes its diagnostics and keeps the last good image.
 #pragma once
 
 #include <atomic>
@@ -16,7 +16,8 @@
 namespace wsd::app {
 
 // One stage of the progressive render: the image size divided by `divisor`; coarse stages take
-// one ray a pixel and at most `light_grid`×`light_grid` samples per area light (0: the scene's).
+// one ray a pixel, at most `light_grid`×`light_grid` samples per area light (0: the scene's) and
+// a small caustic photon map.
 struct PreviewStage {
     int divisor = 1;
     bool coarse = false;

@@ -89,9 +89,10 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         if (!fits_in_memory(lowered.spec, loaded, file, diags)) return std::nullopt;
         const auto build_start = std::chrono::steady_clock::now();
         std::vector<render::SpecError> errors;
-        loaded.scene =
-            render::build_scene(lowered.spec, errors, options.use_bvh, options.threads, options.images);
+        loaded.scene = render::build_scene(lowered.spec, errors, options.use_bvh, options.threads,
+                                           options.images, options.cancel);
         loaded.build_seconds = seconds_since(build_start);
+        if (!loaded.scene && errors.empty() && options.cancel && options.cancel->load()) return std::nullopt;
         if (!errors.empty()) report_spec_errors(errors, lowered, sources, diags);
         if (!loaded.scene && diags.error_count() == errors_before)
             diags.error(Span{file, 0, 0}, "the scene could not be built");

@@ -40,7 +40,7 @@ struct LoadOptions {
     render::ImageCache* images = nullptr;            // texture images kept across loads (frames)
     IncludeReader read_include;                      // empty: included files are read from disk
     // Set: the evaluation stops at the next loop iteration or call once it holds true (a signal),
-    // and load_scene returns no scene and reports nothing.
+    // and so does shooting caustic photons; load_scene then returns no scene and reports nothing.
     const std::atomic<bool>* cancel = nullptr;
 };
 

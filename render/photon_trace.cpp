@@ -386,7 +386,8 @@ std::string caustics_skipped(const SceneSpec& spec, const CausticObjects& object
     return {};
 }
 
-CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threads) {
+CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threads,
+                            const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     CausticBuild build;
     const size_t n = size_t(spec.settings.caustic_photons);
@@ -451,11 +452,15 @@ CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threa
     std::vector<std::vector<Photon>> stored(chunks);
     ParallelOptions options;
     options.threads = threads;
-    parallel_for(chunks, options, [&](size_t c, int) {
-        RayStats stats;  // photon rays are not the render's
-        for (size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
-            shooter.shoot(i, stored[c], stats);
-    });
+    options.cancel = cancel;
+    if (!parallel_for(chunks, options, [&](size_t c, int) {
+            RayStats stats;  // photon rays are not the render's
+            for (size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i)
+                shooter.shoot(i, stored[c], stats);
+        })) {
+        build.cancelled = true;
+        return build;
+    }
     std::vector<Photon> all;
     for (auto& v : stored) all.insert(all.end(), v.begin(), v.end());
     build.shot = n;

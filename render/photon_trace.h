@@ -2,6 +2,7 @@
 // light and which can receive it, and the photon map shot from the lights through them.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -31,11 +32,14 @@ struct CausticBuild {
     uint64_t shot = 0, stored = 0;
     double seconds = 0;
     std::string skipped;  // caustics_skipped()
+    bool cancelled = false;
 };
 
 // Shoots settings.caustic_photons photons over `threads` threads (0 = all cores). Photon i draws
 // its random numbers from (seed, i) and photons are stored in index order, so the map is the same
-// for any thread count.
-CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threads);
+// for any thread count. Once `*cancel` holds true no more photons are shot and `cancelled` is set
+// (the map is then incomplete).
+CausticBuild build_caustics(const Scene& scene, const SceneSpec& spec, int threads,
+                            const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace wsd::render

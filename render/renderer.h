@@ -99,9 +99,11 @@ class ImageCache;  // decoded texture images by path (texture.h)
 
 // Builds everything the render needs; nullptr with errors appended on bad input. `images`, when
 // given, keeps the decoded texture images for later builds (the frames of an animation read each
-// file once); without it each build loads its own.
+// file once); without it each build loads its own. Once `*cancel` holds true no more caustic
+// photons are shot and the build returns nullptr without an error.
 std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors,
-                                         bool use_bvh = true, int threads = 0, ImageCache* images = nullptr);
+                                         bool use_bvh = true, int threads = 0, ImageCache* images = nullptr,
+                                         const std::atomic<bool>* cancel = nullptr);
 
 RenderResult render(const Scene& scene, const RenderOptions& options);
 

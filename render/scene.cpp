@@ -230,7 +230,7 @@ void Scene::compute_transmissive_bounds(const SceneSpec& spec) {
 }
 
 std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<SpecError>& errors, bool use_bvh,
-                                         int threads, ImageCache* images) {
+                                         int threads, ImageCache* images, const std::atomic<bool>* cancel) {
     const auto start = std::chrono::steady_clock::now();
     const size_t errors_before = errors.size();
     auto scene = std::shared_ptr<Scene>(new Scene());
@@ -337,7 +337,10 @@ std::shared_ptr<const Scene> build_scene(const SceneSpec& spec, std::vector<Spec
 
     scene->effects_ = analyse_effects(spec);
     scene->compute_transmissive_bounds(spec);
-    if (spec.settings.caustic_photons > 0) scene->caustics_ = build_caustics(*scene, spec, threads);
+    if (spec.settings.caustic_photons > 0) {
+        scene->caustics_ = build_caustics(*scene, spec, threads, cancel);
+        if (scene->caustics_.cancelled) return nullptr;
+    }
     scene->build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return scene;
 }

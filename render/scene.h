@@ -57,7 +57,7 @@ public:
 
 private:
     friend std::shared_ptr<const Scene> build_scene(const SceneSpec&, std::vector<SpecError>&, bool, int,
-                                                    ImageCache*);
+                                                    ImageCache*, const std::atomic<bool>*);
     void compute_transmissive_bounds(const SceneSpec& spec);
 
     std::unique_ptr<Geometry> geometry_;

@@ -1,0 +1,153 @@
+"""`wsd preview` through plain HTTP and its signals, without a browser (usage: preview_http_test.py
+WSD [TEST...]). Each test starts its own server on a free port and stops it with SIGINT; every wait
+polls with a deadline. The exit status is the number of failed tests."""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import urllib.request
+
+WSD = os.path.abspath(sys.argv[1])
+
+HEAD = """settings {{ width {w}  height {h}{extra} }}
+camera {{ position <0, 0, -5>  look_at <0, 0, 0>  up <0, 1, 0>  fov 50 }}
+light point {{ position <4, 6, -8> }}
+"""
+SCENE = HEAD.format(w=64, h=48, extra="") + """sphere { center <0, 0, 0>  radius 1.5  material material { color <1, 0, 0> } }
+"""
+BLUE = SCENE.replace("<1, 0, 0>", "<0, 0, 1>")
+LONG_LOOP = SCENE + "let s = 0\nfor i in 0 .. 99999990 { let s = s + 1 }\n"
+
+
+class Failure(Exception):
+    pass
+
+
+def check(condition, what):
+    if not condition:
+        raise Failure(what)
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
+class Preview:
+    """A running `wsd preview` in `work`; its port is read from the line it prints."""
+
+    def __init__(self, work, scene, *args):
+        self.errors = open(os.path.join(work, "stderr.txt"), "w+")
+        self.process = subprocess.Popen([WSD, "preview", scene, "--port", "0", "--threads", "2", *args],
+                                        cwd=work, stdout=subprocess.PIPE, stderr=self.errors, text=True)
+        line = self.process.stdout.readline()
+        check("http://127.0.0.1:" in line, "the preview prints its address: " + repr(line))
+        self.port = int(line.split("http://127.0.0.1:")[1].split("/")[0])
+
+    def get(self, path, headers=None, timeout=5):
+        request = urllib.request.Request("http://127.0.0.1:%d%s" % (self.port, path), headers=headers or {})
+        try:
+            with urllib.request.urlopen(request, timeout=timeout) as r:
+                return r.status, dict(r.headers), r.read()
+        except urllib.error.HTTPError as e:
+            return e.code, dict(e.headers), e.read()
+
+    def status(self):
+        return json.loads(self.get("/status")[2])
+
+    def wait(self, predicate, what, timeout=10):
+        deadline = time.monotonic() + timeout
+        s = self.status()
+        while not predicate(s):
+            check(time.monotonic() < deadline, "%s within %g s (last status %s)" % (what, timeout, s))
+            time.sleep(0.05)
+            s = self.status()
+        return s
+
+    def stop(self, within=3):
+        """SIGINT; the server must end with status 0 within `within` seconds."""
+        start = time.monotonic()
+        self.process.send_signal(signal.SIGINT)
+        try:
+            code = self.process.wait(timeout=within)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+            raise Failure("SIGINT stops the server within %g s" % within)
+        check(code == 0, "the server stops with status 0 (got %d)" % code)
+        return time.monotonic() - start
+
+    def kill(self):
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+
+
+def done(generation):
+    return lambda s: s["generation"] >= generation and s["phase"] == "done"
+
+
+def test_save_abandons_a_long_evaluation(work):
+    scene = os.path.join(work, "s.wsd")
+    write(scene, LONG_LOOP)
+    p = Preview(work, "s.wsd")
+    try:
+        p.wait(lambda s: s["phase"] == "loading", "the long load starts")
+        time.sleep(0.3)
+        write(scene, SCENE)
+        p.wait(done(2), "a save during a long evaluation renders the fixed scene", timeout=5)
+        write(scene, LONG_LOOP)
+        p.wait(lambda s: s["generation"] >= 3 and s["phase"] == "loading", "the long load starts again")
+        time.sleep(0.3)
+        p.stop()
+    finally:
+        p.kill()
+
+
+def test_caustics_show_coarse_at_once_and_stop(work):
+    scene = os.path.join(work, "s.wsd")
+    write(scene, HEAD.format(w=64, h=48, extra="  caustic_photons 100000000") + """
+plane { normal <0, 1, 0>  distance -1.5  material material { color <1, 1, 1> } }
+sphere { center <0, 0, 0>  radius 1  material material { color <1, 1, 1>  transmission 1  ior 1.5 } }
+""")
+    p = Preview(work, "s.wsd")
+    try:
+        p.wait(lambda s: s["image_id"] > 0, "a coarse image before the big photon map", timeout=5)
+        time.sleep(0.5)  # well into the full size's photons
+        p.stop()
+    finally:
+        p.kill()
+
+
+def main():
+    tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
+    chosen = sys.argv[2:]
+    failures = 0
+    for name, f in tests:
+        if chosen and name not in chosen:
+            continue
+        work = tempfile.mkdtemp(prefix="wsd-preview-http-")
+        start = time.monotonic()
+        try:
+            f(work)
+            print("ok: %s (%.1f s)" % (name, time.monotonic() - start))
+        except Failure as e:
+            failures += 1
+            print("FAIL: %s: %s" % (name, e))
+            try:
+                with open(os.path.join(work, "stderr.txt")) as err:
+                    sys.stdout.write(err.read())
+            except OSError:
+                pass
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
+    sys.exit(failures)
+
+
+if __name__ == "__main__":
+    main()
