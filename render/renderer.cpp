@@ -48,12 +48,13 @@ struct Prepass {
 
 // Renders tiles into a film (and the prepass) for one worker thread; with kAov, the auxiliary
 // images too (a separate instantiation, so that the colour-only one runs exactly its own code).
+// Once `cancel` holds true a tile stops at the next pixel (or 4×4 block), its film left part done.
 template <bool kAov>
 class TileRenderer {
 public:
     // `aov` and `aov_film` are both null, or both set to render the auxiliary images too.
     TileRenderer(const Scene& scene, Tracer& tracer, RayStats& stats, Film& film, const Region& region,
-                 Prepass& prepass, AovTracer* aov, AovFilm* aov_film)
+                 Prepass& prepass, AovTracer* aov, AovFilm* aov_film, const std::atomic<bool>* cancel)
         : tracer_(tracer),
           aov_(aov),
           aov_film_(aov_film),
@@ -64,7 +65,8 @@ public:
           seed_(scene.settings().seed),
           samples_(scene.settings().supersamples),
           grid_(supersample_grid(scene.settings().supersamples)),
-          threshold_(scene.settings().aa_threshold) {}
+          threshold_(scene.settings().aa_threshold),
+          cancel_(cancel) {}
 
     void render(const Region& t) {
         if (samples_ == 1) {
@@ -76,7 +78,10 @@ public:
             return;
         }
         for (int y = t.y0; y < t.y1; ++y)
-            for (int x = t.x0; x < t.x1; ++x) store(x, y, full_pixel(x, y));
+            for (int x = t.x0; x < t.x1; ++x) {
+                if (cancelled()) return;
+                store(x, y, full_pixel(x, y));
+            }
     }
 
     // Phase 1 of adaptive supersampling.
@@ -101,6 +106,7 @@ public:
         };
         for (int y = t.y0; y < t.y1; ++y) {
             for (int x = t.x0; x < t.x1; ++x) {
+                if (cancelled()) return;
                 const size_t i = prepass_.index(x, y);
                 const bool refine = (x > p.x0 && differs(i, i - 1)) || (x + 1 < p.x1 && differs(i, i + 1)) ||
                                     (y > p.y0 && differs(i, i - row)) ||
@@ -117,6 +123,8 @@ public:
     }
 
 private:
+    bool cancelled() const { return cancel_ && cancel_->load(std::memory_order_relaxed); }
+
     Color guarded(const Color& c) {
         if (finite3(c)) return c;
         ++stats_.nonfinite_samples;
@@ -131,6 +139,7 @@ private:
         static_assert(kSide * kSide <= Geometry::kMaxPacket);
         for (int y = t.y0; y < t.y1; y += kSide) {
             for (int x = t.x0; x < t.x1; x += kSide) {
+                if (cancelled()) return;
                 double px[kSide * kSide], py[kSide * kSide];
                 uint64_t key[kSide * kSide];
                 int xs[kSide * kSide], ys[kSide * kSide], n = 0;
@@ -214,6 +223,7 @@ private:
     int samples_;
     SampleGrid grid_;
     double threshold_;
+    const std::atomic<bool>* cancel_;
 };
 
 // One render thread's state, made on its first tile: its tracer, its tile renderer and the
@@ -297,18 +307,21 @@ bool render_tiles(const RenderJob& job) {
                 if constexpr (kAov) made->aov = std::make_unique<AovTracer>(job.scene);
                 made->tiles = std::make_unique<TileRenderer<kAov>>(
                     job.scene, *made->tracer, made->stats, job.film, job.region, job.prepass, made->aov.get(),
-                    kAov ? &job.aovs : nullptr);
+                    kAov ? &job.aovs : nullptr, job.options.cancel);
                 w = std::move(made);
             }
             (w->tiles.get()->*tile)(tiles[i]);
             job.tally.add(w->stats, area(tiles[i]));
         });
     };
+    // A tile cut short by cancellation still counts as run: the flag decides.
+    auto cancelled = [&] { return job.options.cancel && job.options.cancel->load(); };
     bool complete = true;
-    if (job.adaptive) complete = run(job.prepass.rect, &TileRenderer<kAov>::render_centres);
+    if (job.adaptive) complete = run(job.prepass.rect, &TileRenderer<kAov>::render_centres) && !cancelled();
     if (complete)
         complete = run(job.region,
-                       job.adaptive ? &TileRenderer<kAov>::render_adaptive : &TileRenderer<kAov>::render);
+                       job.adaptive ? &TileRenderer<kAov>::render_adaptive : &TileRenderer<kAov>::render) &&
+                   !cancelled();
     return complete;
 }
 

@@ -124,6 +124,23 @@ sphere { center <0, 0, 0>  radius 1  material material { color <1, 1, 1>  transm
         p.kill()
 
 
+def test_a_save_cancels_an_expensive_tile_soon(work):
+    scene = os.path.join(work, "s.wsd")
+    write(scene, HEAD.format(w=64, h=64, extra="  supersamples 256  indirect_samples 256") + """
+plane { normal <0, 0, -1>  distance -3  material material { color <1, 1, 1> } }
+sphere { center <0, 0, 0>  radius 1.5  material material { color <1, 0, 0> } }
+""")  # a wall behind the sphere: each pixel costs 256 × 256 paths, a tile several seconds
+    p = Preview(work, "s.wsd")
+    try:
+        p.wait(lambda s: s["stage"] == s["stages"] - 1 and s["stages"] > 1, "the coarse stages", timeout=20)
+        time.sleep(0.5)  # into the full size's first tiles
+        write(scene, SCENE)
+        p.wait(done(2), "a save during an expensive tile renders the new scene", timeout=2)
+        p.stop()
+    finally:
+        p.kill()
+
+
 def main():
     tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
     chosen = sys.argv[2:]
