@@ -1,6 +1,7 @@
 // `wsd preview SCENE`: serves a live preview page (preview_server.h), renders the scene in stages
 // on a thread of its own (preview_render.h) and renders again whenever the scene or a file it
 // names is saved (preview_watch.h), until Ctrl-C or SIGTERM.
+#include <csignal>
 #include <iostream>
 #include <thread>
 
@@ -30,6 +31,8 @@ int run_preview(const PreviewArgs& args) {
     std::string error;
     if (args.scene == "-") return fail(exit_code::usage, "preview needs a scene file, not stdin");
     if (!can_open_for_reading(args.scene, error)) return fail(exit_code::io, error);
+    // A page closed mid-answer must not end the server.
+    std::signal(SIGPIPE, SIG_IGN);
     FileWatcher watcher;
     if (!watcher.ok()) return fail(exit_code::io, watcher.error());
     watcher.watch({args.scene}, false);  // before the first load: a save during it is seen

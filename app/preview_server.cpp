@@ -1,13 +1,20 @@
 // The preview's routes on a cpp-httplib server. Each event stream holds one of the server's
 // threads; it sends a snapshot whenever the state's version changes and a comment every few
-// seconds otherwise (so a closed page is noticed), and ends when the state stops.
+// seconds otherwise (so a closed page is noticed), and ends when the state stops. Short read and
+// keep-alive timeouts keep a slow or idle client from holding a thread for long, and stop() shuts
+// the open connections down so that none can keep the server from ending.
 #include "app/preview_server.h"
 
+#include <dirent.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 
 #include "app/preview_page.h"
@@ -17,7 +24,39 @@ namespace wsd::app {
 namespace {
 
 constexpr int kKeepAliveMs = 2000;
-constexpr size_t kServerThreads = 16;  // event streams hold one each
+constexpr size_t kServerThreads = 16;         // event streams hold one each
+constexpr time_t kReadTimeoutSeconds = 1;     // a request's bytes arrive within this, or it ends
+constexpr time_t kIdleConnectionSeconds = 1;  // a kept-alive connection waits this for the next one
+
+// The local port of a connected TCP socket `fd`, or -1 for anything else (a listening socket, a
+// file, a closed descriptor).
+int connection_port(int fd) {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISSOCK(st.st_mode)) return -1;
+    sockaddr_storage local{}, peer{};
+    socklen_t size = sizeof local;
+    if (::getsockname(fd, reinterpret_cast<sockaddr*>(&local), &size) != 0) return -1;
+    size = sizeof peer;
+    if (::getpeername(fd, reinterpret_cast<sockaddr*>(&peer), &size) != 0) return -1;
+    if (local.ss_family == AF_INET) return ntohs(reinterpret_cast<const sockaddr_in&>(local).sin_port);
+    if (local.ss_family == AF_INET6) return ntohs(reinterpret_cast<const sockaddr_in6&>(local).sin6_port);
+    return -1;
+}
+
+// Shuts down every connection this process accepted on `port`: a thread reading or writing one
+// returns at once and closes it. (cpp-httplib ends a connection only between requests.)
+void shut_connections_down(int port) {
+    DIR* dir = ::opendir("/proc/self/fd");
+    if (!dir) return;
+    const int own = ::dirfd(dir);
+    while (const dirent* entry = ::readdir(dir)) {
+        char* end = nullptr;
+        const long fd = std::strtol(entry->d_name, &end, 10);
+        if (end == entry->d_name || *end != '\0' || fd == own) continue;
+        if (connection_port(int(fd)) == port) ::shutdown(int(fd), SHUT_RDWR);
+    }
+    ::closedir(dir);
+}
 
 }  // namespace
 
@@ -25,6 +64,7 @@ struct PreviewServer::Impl {
     explicit Impl(const PreviewState& s) : state(s) {}
     const PreviewState& state;
     httplib::Server server;
+    std::atomic<bool> listening_ended{false};
 };
 
 PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique<Impl>(state)) {
@@ -37,6 +77,8 @@ PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique
         setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
     });
     server.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
+    server.set_read_timeout(kReadTimeoutSeconds, 0);
+    server.set_keep_alive_timeout(kIdleConnectionSeconds);
     server.Get("/", [](const httplib::Request&, httplib::Response& res) {
         const std::string_view page = preview_page_html();
         res.set_header("Cache-Control", "no-store");
@@ -106,7 +148,10 @@ bool PreviewServer::bind(const std::string& host, int port, std::string& error) 
 }
 
 void PreviewServer::start() {
-    thread_ = std::thread([this] { impl_->server.listen_after_bind(); });
+    thread_ = std::thread([this] {
+        impl_->server.listen_after_bind();
+        impl_->listening_ended = true;
+    });
     // stop() only reaches a server that is running: wait for it (the socket already listens, so
     // no connection is lost meanwhile).
     for (int i = 0; i < 1000 && !impl_->server.is_running(); ++i)
@@ -115,7 +160,14 @@ void PreviewServer::start() {
 
 void PreviewServer::stop() {
     impl_->server.stop();
-    if (thread_.joinable()) thread_.join();
+    if (!thread_.joinable()) return;
+    // The listening socket is closed, so no connection is added; those open end once shut down
+    // (a connection accepted just before is shut down on a later round).
+    for (int i = 0; i < 500 && !impl_->listening_ended; ++i) {
+        shut_connections_down(port_);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    thread_.join();
 }
 
 }  // namespace wsd::app

@@ -1,6 +1,6 @@
 // The live preview's HTTP server (cpp-httplib): the page at /, server-sent events at /events (a
 // JSON snapshot of the PreviewState on every change), the image on show at /image and the
-// current snapshot at /status.
+// current snapshot at /status. A slow or idle connection is closed after a second.
 #pragma once
 
 #include <memory>
@@ -23,7 +23,10 @@ public:
     int port() const { return port_; }
 
     void start();  // serves on a thread of its own
-    void stop();   // the state must be stopped first, so that open event streams end
+    // Closes the listening socket and shuts down the open connections (a client that is slow, idle
+    // or not reading cannot hold it up). The state must be stopped first, so that open event
+    // streams end cleanly.
+    void stop();
 
 private:
     struct Impl;

@@ -5,6 +5,7 @@ import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -121,6 +122,35 @@ sphere { center <0, 0, 0>  radius 1  material material { color <1, 1, 1>  transm
         time.sleep(0.5)  # well into the full size's photons
         p.stop()
     finally:
+        p.kill()
+
+
+def test_slow_and_idle_clients_do_not_delay_the_stop(work):
+    write(os.path.join(work, "s.wsd"), SCENE)
+    p = Preview(work, "s.wsd")
+    idle = slow = None
+    stopping = threading.Event()
+    try:
+        p.wait(done(1), "the first render")
+        idle = socket.create_connection(("127.0.0.1", p.port))
+        slow = socket.create_connection(("127.0.0.1", p.port))
+        slow.sendall(b"GET / HTTP/1.1\r\nHost: wsd\r\n")
+
+        def drip():  # a header line every half second, never the end of the request
+            while not stopping.wait(0.5):
+                try:
+                    slow.sendall(b"X-Slow: 1\r\n")
+                except OSError:
+                    return
+
+        threading.Thread(target=drip, daemon=True).start()
+        time.sleep(1.2)
+        p.stop(within=2)
+    finally:
+        stopping.set()
+        for conn in (idle, slow):
+            if conn:
+                conn.close()
         p.kill()
 
 
