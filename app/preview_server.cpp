@@ -24,7 +24,10 @@ namespace wsd::app {
 namespace {
 
 constexpr int kKeepAliveMs = 2000;
-constexpr size_t kServerThreads = 16;         // event streams hold one each
+// Event streams hold a thread each, so at most kEventStreams are served at once (more are
+// answered 503) and the other threads stay free for pages, images and kept-alive connections.
+constexpr size_t kServerThreads = 64;
+constexpr int kEventStreams = 32;
 constexpr time_t kReadTimeoutSeconds = 1;     // a request's bytes arrive within this, or it ends
 constexpr time_t kIdleConnectionSeconds = 1;  // a kept-alive connection waits this for the next one
 
@@ -65,7 +68,21 @@ struct PreviewServer::Impl {
     const PreviewState& state;
     httplib::Server server;
     std::atomic<bool> listening_ended{false};
+    std::atomic<int> event_streams{0};
 };
+
+namespace {
+
+// One of the event streams counted in Impl::event_streams, given back with the stream.
+struct EventStreamSlot {
+    explicit EventStreamSlot(std::atomic<int>& c) : count(c) {}
+    ~EventStreamSlot() { --count; }
+    EventStreamSlot(const EventStreamSlot&) = delete;
+    EventStreamSlot& operator=(const EventStreamSlot&) = delete;
+    std::atomic<int>& count;
+};
+
+}  // namespace
 
 PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique<Impl>(state)) {
     httplib::Server& server = impl_->server;
@@ -98,25 +115,35 @@ PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique
         }
         res.set_content(png, "image/png");
     });
-    server.Get("/events", [&st](const httplib::Request&, httplib::Response& res) {
+    Impl& impl = *impl_;
+    server.Get("/events", [&st, &impl](const httplib::Request&, httplib::Response& res) {
         res.set_header("Cache-Control", "no-store");
+        if (++impl.event_streams > kEventStreams) {
+            --impl.event_streams;
+            res.status = 503;
+            res.set_header("Retry-After", "5");
+            res.set_content("too many open event streams (close some preview pages)\n", "text/plain");
+            return;
+        }
+        auto slot = std::make_shared<EventStreamSlot>(impl.event_streams);
         auto seen = std::make_shared<uint64_t>(~uint64_t(0));
-        res.set_chunked_content_provider("text/event-stream", [&st, seen](size_t, httplib::DataSink& sink) {
-            bool stopping = false;
-            const PreviewSnapshot s = st.wait_change(*seen, kKeepAliveMs, stopping);
-            if (stopping) {
-                sink.done();
-                return true;
-            }
-            std::string message;
-            if (s.version != *seen) {
-                *seen = s.version;
-                message = "data: " + snapshot_json(s) + "\n\n";
-            } else {
-                message = ": keep-alive\n\n";
-            }
-            return sink.write(message.data(), message.size());
-        });
+        res.set_chunked_content_provider(
+            "text/event-stream", [&st, seen, slot](size_t, httplib::DataSink& sink) {
+                bool stopping = false;
+                const PreviewSnapshot s = st.wait_change(*seen, kKeepAliveMs, stopping);
+                if (stopping) {
+                    sink.done();
+                    return true;
+                }
+                std::string message;
+                if (s.version != *seen) {
+                    *seen = s.version;
+                    message = "data: " + snapshot_json(s) + "\n\n";
+                } else {
+                    message = ": keep-alive\n\n";
+                }
+                return sink.write(message.data(), message.size());
+            });
     });
 }
 

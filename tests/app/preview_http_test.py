@@ -125,6 +125,22 @@ sphere { center <0, 0, 0>  radius 1  material material { color <1, 1, 1>  transm
         p.kill()
 
 
+def raw_request(port, text, timeout=5):
+    """Sends `text` on a new connection; the connection and the status line of the answer."""
+    conn = socket.create_connection(("127.0.0.1", port), timeout=timeout)
+    conn.sendall(text.encode())
+    line = b""
+    try:
+        while not line.endswith(b"\r\n"):
+            byte = conn.recv(1)
+            if not byte:
+                break
+            line += byte
+    except socket.timeout:
+        pass  # no answer: the line so far (empty)
+    return conn, line.decode(errors="replace").strip()
+
+
 def test_slow_and_idle_clients_do_not_delay_the_stop(work):
     write(os.path.join(work, "s.wsd"), SCENE)
     p = Preview(work, "s.wsd")
@@ -151,6 +167,29 @@ def test_slow_and_idle_clients_do_not_delay_the_stop(work):
         for conn in (idle, slow):
             if conn:
                 conn.close()
+        p.kill()
+
+
+def test_many_event_streams_leave_the_server_responsive(work):
+    write(os.path.join(work, "s.wsd"), SCENE)
+    p = Preview(work, "s.wsd")
+    streams = []
+    try:
+        p.wait(done(1), "the first render")
+        codes = []
+        for i in range(40):
+            conn, line = raw_request(p.port, "GET /events HTTP/1.1\r\nHost: wsd\r\n\r\n")
+            streams.append(conn)
+            check(line != "", "event stream %d is answered (%s before it)" % (i + 1, codes))
+            codes.append(line.split(" ")[1] if " " in line else line)
+        check(codes.count("200") >= 16, "16 or more event streams are served: %s" % codes)
+        check(codes.count("503") >= 1, "too many event streams are answered 503: %s" % codes)
+        for path in ("/", "/status", "/image"):
+            check(p.get(path, timeout=2)[0] == 200, "GET %s is answered with 40 event streams open" % path)
+        p.stop()
+    finally:
+        for conn in streams:
+            conn.close()
         p.kill()
 
 
@@ -183,7 +222,7 @@ def main():
         try:
             f(work)
             print("ok: %s (%.1f s)" % (name, time.monotonic() - start))
-        except Failure as e:
+        except (Failure, OSError) as e:
             failures += 1
             print("FAIL: %s: %s" % (name, e))
             try:
