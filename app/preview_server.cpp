@@ -101,6 +101,12 @@ PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique
         res.set_header("Cache-Control", "no-store");
         res.set_content(page.data(), page.size(), "text/html; charset=utf-8");
     });
+    // No route serves part of a resource: a Range header is ignored, as HTTP allows (cpp-httplib
+    // would answer the event stream 206 without a Content-Range, and the image in many parts).
+    server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response&) {
+        const_cast<httplib::Request&>(req).ranges.clear();  // the server's own, not const
+        return httplib::Server::HandlerResponse::Unhandled;
+    });
     server.Get("/status", [&st](const httplib::Request&, httplib::Response& res) {
         res.set_header("Cache-Control", "no-store");
         res.set_content(snapshot_json(st.snapshot()), "application/json");

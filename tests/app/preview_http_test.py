@@ -210,6 +210,31 @@ sphere { center <0, 0, 0>  radius 1.5  material material { color <1, 0, 0> } }
         p.kill()
 
 
+def test_range_headers_are_ignored(work):
+    write(os.path.join(work, "s.wsd"), SCENE)
+    p = Preview(work, "s.wsd")
+    conns = []
+    try:
+        p.wait(done(1), "the first render")
+        status, _, png = p.get("/image")
+        check(status == 200 and png.startswith(b"\x89PNG"), "the image")
+        status, _, body = p.get("/image", {"Range": "bytes=" + ",".join(["0-1000"] * 500)})
+        check(status == 200 and body == png, "a multi-range request gets the whole image (%d)" % status)
+        conn, line = raw_request(p.port, "GET /events HTTP/1.1\r\nHost: wsd\r\nRange: bytes=0-10\r\n\r\n")
+        conns.append(conn)
+        check(line == "HTTP/1.1 200 OK", "an event stream with a Range header is 200: " + line)
+        start = time.monotonic()
+        conn, line = raw_request(p.port, "POST /status HTTP/1.1\r\nHost: wsd\r\n\r\n")
+        conns.append(conn)
+        check(line.startswith("HTTP/1.1 4") and time.monotonic() - start < 2,
+              "a POST without Content-Length is refused soon: %s after %.1f s" % (line, time.monotonic() - start))
+        p.stop()
+    finally:
+        for conn in conns:
+            conn.close()
+        p.kill()
+
+
 def main():
     tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
     chosen = sys.argv[2:]
