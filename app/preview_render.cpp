@@ -5,6 +5,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -12,6 +13,7 @@
 #include "app/io_util.h"
 #include "app/stats_report.h"
 #include "lang/load.h"
+#include "render/file_util.h"
 #include "render/image_io.h"
 #include "render/scene.h"
 #include "render/texture.h"
@@ -29,15 +31,33 @@ void append_bytes(void* context, void* data, int size) {
     if (size > 0) static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
 }
 
-// Every file the load read (the scene and its includes) or names (textures, OBJ meshes), once each.
+// Reads an include from disk as the interpreter does, noting its path in `tried`: an include that
+// cannot be read (yet) is watched too.
+lang::IncludeReader noting_reader(std::vector<std::string>& tried) {
+    return [&tried](const std::string& path, std::string& text, std::string& reason) {
+        tried.push_back(path);
+        render::FileBytes bytes;
+        if (!render::read_whole_file(path, bytes, reason)) {
+            if (!reason.empty())
+                reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
+            return false;
+        }
+        text.assign(bytes.view());
+        return true;
+    };
+}
+
+// Every file the load read (the scene and its includes), tried to read (`tried`) or names
+// (textures, OBJ meshes), once each.
 std::vector<std::string> named_files(const std::string& scene, const lang::SourceManager& sources,
-                                     const lang::LoadedScene* loaded) {
+                                     const std::vector<std::string>& tried, const lang::LoadedScene* loaded) {
     std::vector<std::string> files{scene};
     std::set<std::string> seen{scene};
     auto add = [&](const std::string& path) {
         if (!path.empty() && path != "--define" && seen.insert(path).second) files.push_back(path);
     };
     for (size_t i = 0; i < sources.size(); ++i) add(sources.file(static_cast<uint32_t>(i)).path);
+    for (const std::string& path : tried) add(path);
     if (!loaded) return files;
     for (const render::MaterialSpec& m : loaded->spec.materials)
         if (m.texture && m.texture->kind == render::TextureKind::Image) add(m.texture->image_path);
@@ -160,6 +180,8 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     options.threads = threads_;
     options.images = &images;
     options.cancel = &cancel_;  // a save or Ctrl-C abandons a long evaluation or photon map
+    std::vector<std::string> tried;
+    options.read_include = noting_reader(tried);
     options.adjust = [&](render::SceneSpec& spec) {
         full = spec.settings;
         lights = spec.lights;
@@ -177,13 +199,14 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     if (superseded()) return;
     const bool ok = loaded && !diags.has_errors();
     if (ok) {
-        publish_files(named_files(scene_, sources, &*loaded), false);
+        publish_files(named_files(scene_, sources, tried, &*loaded), false);
     } else {
         // When only the build failed (a missing or broken texture), the description without the
         // build still names the files to watch for the fix.
         lang::LoadOptions unbuilt;
         unbuilt.build = false;
         unbuilt.cancel = &cancel_;
+        unbuilt.read_include = noting_reader(tried);
         lang::SourceManager unbuilt_sources;
         lang::Diagnostics unbuilt_diags;
         std::optional<lang::LoadedScene> described;
@@ -194,9 +217,9 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         }
         if (superseded()) return;
         if (described && !unbuilt_diags.has_errors())
-            publish_files(named_files(scene_, unbuilt_sources, &*described), true);
+            publish_files(named_files(scene_, unbuilt_sources, tried, &*described), true);
         else
-            publish_files(named_files(scene_, sources, nullptr), true);
+            publish_files(named_files(scene_, sources, tried, nullptr), true);
     }
     if (!ok) {
         std::string message = lang::format_diagnostics(diags, sources);

@@ -193,6 +193,52 @@ def test_many_event_streams_leave_the_server_responsive(work):
         p.kill()
 
 
+def test_recreated_directories_and_late_includes_are_noticed(work):
+    dd = os.path.join(work, "dd")
+    os.mkdir(dd)
+    write(os.path.join(dd, "s.wsd"), SCENE)
+    p = Preview(work, "dd/s.wsd")
+    try:
+        p.wait(done(1), "the first render")
+        shutil.rmtree(dd)
+        g = p.wait(lambda s: s["phase"] == "error", "a deleted directory is an error")["generation"]
+        os.mkdir(dd)
+        write(os.path.join(dd, "s.wsd"), BLUE)
+        g = p.wait(lambda s: s["generation"] > g and s["phase"] == "done", "the recreated directory is seen",
+                   timeout=5)["generation"]
+        # The scene now includes a file in a directory that does not exist yet.
+        write(os.path.join(dd, "s.wsd"), 'include "sub/c.wsdi"\n' + BLUE.replace("<0, 0, 1>", "colour"))
+        g = p.wait(lambda s: s["generation"] > g and "sub/c.wsdi" in s["diagnostics"],
+                   "the missing include is reported", timeout=5)["generation"]
+        os.mkdir(os.path.join(dd, "sub"))
+        write(os.path.join(dd, "sub", "c.wsdi"), "let colour = <0, 1, 0>\n")
+        g = p.wait(lambda s: s["generation"] > g and s["phase"] == "done", "a late include is seen",
+                   timeout=5)["generation"]
+        shutil.rmtree(os.path.join(dd, "sub"))
+        os.mkdir(os.path.join(dd, "sub"))
+        write(os.path.join(dd, "sub", "c.wsdi"), "let colour = <1, 1, 0>\n")
+        p.wait(lambda s: s["generation"] > g and s["phase"] == "done",
+               "the include's recreated directory is seen", timeout=5)
+        p.stop()
+    finally:
+        p.kill()
+
+
+def test_a_linked_scene_follows_its_target(work):
+    os.mkdir(os.path.join(work, "other"))
+    target = os.path.join(work, "other", "real.wsd")
+    write(target, SCENE)
+    os.symlink("other/real.wsd", os.path.join(work, "s.wsd"))
+    p = Preview(work, "s.wsd")
+    try:
+        p.wait(done(1), "the first render")
+        write(target, BLUE)
+        p.wait(done(2), "saving the link's target renders again", timeout=5)
+        p.stop()
+    finally:
+        p.kill()
+
+
 def test_a_save_cancels_an_expensive_tile_soon(work):
     scene = os.path.join(work, "s.wsd")
     write(scene, HEAD.format(w=64, h=64, extra="  supersamples 256  indirect_samples 256") + """
