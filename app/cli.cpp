@@ -326,6 +326,11 @@ int run_cli(int argc, char** argv) {
     preview->add_option("--port", preview_args.port, "TCP port (default 8642; 0 = any free one)")
         ->check(integer_in(0, 65535));
     preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)");
+    preview
+        ->add_option("-D,--define", preview_args.defines,
+                     "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
+        ->allow_extra_args(false)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     preview->add_option("--threads", preview_args.threads, "render threads; 0 = all cores")
         ->check(integer_in(0, 4096));
 

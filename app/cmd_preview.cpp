@@ -12,6 +12,7 @@
 #include "app/preview_server.h"
 #include "app/preview_state.h"
 #include "app/preview_watch.h"
+#include "app/scene_setup.h"
 #include "app/signals.h"
 
 namespace wsd::app {
@@ -31,6 +32,8 @@ int run_preview(const PreviewArgs& args) {
     std::string error;
     if (args.scene == "-") return fail(exit_code::usage, "preview needs a scene file, not stdin");
     if (!can_open_for_reading(args.scene, error)) return fail(exit_code::io, error);
+    lang::ParamTable params;
+    if (const int status = evaluate_defines(args.defines, params); status != exit_code::ok) return status;
     // A page closed mid-answer must not end the server.
     std::signal(SIGPIPE, SIG_IGN);
     FileWatcher watcher;
@@ -42,7 +45,7 @@ int run_preview(const PreviewArgs& args) {
     PreviewServer server(state);
     if (!server.bind(args.host, args.port, error)) return fail(exit_code::io, error);
 
-    PreviewRenderer renderer(state, args.scene, args.threads);
+    PreviewRenderer renderer(state, args.scene, args.threads, &params);
     std::thread render_thread([&renderer] { renderer.run(); });
     server.start();
     renderer.request();

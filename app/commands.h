@@ -88,6 +88,7 @@ int run_lsp();
 
 struct PreviewArgs {
     std::string scene;
+    std::vector<std::string> defines;  // NAME=EXPR, from --define/-D, in order
     std::string host = "127.0.0.1";
     int port = 8642;  // 0: any free port
     int threads = 0;

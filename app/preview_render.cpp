@@ -110,8 +110,9 @@ std::string encode_png(int width, int height, const std::vector<float>& rgb) {
     return png;
 }
 
-PreviewRenderer::PreviewRenderer(PreviewState& state, std::string scene_path, int threads)
-    : state_(state), scene_(std::move(scene_path)), threads_(threads) {}
+PreviewRenderer::PreviewRenderer(PreviewState& state, std::string scene_path, int threads,
+                                 const lang::ParamTable* params)
+    : state_(state), scene_(std::move(scene_path)), threads_(threads), params_(params) {}
 
 void PreviewRenderer::request() {
     std::lock_guard lock(mutex_);
@@ -179,6 +180,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     lang::LoadOptions options;
     options.threads = threads_;
     options.images = &images;
+    options.params = params_;
     options.cancel = &cancel_;  // a save or Ctrl-C abandons a long evaluation or photon map
     std::vector<std::string> tried;
     options.read_include = noting_reader(tried);
@@ -205,6 +207,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         // build still names the files to watch for the fix.
         lang::LoadOptions unbuilt;
         unbuilt.build = false;
+        unbuilt.params = params_;
         unbuilt.cancel = &cancel_;
         unbuilt.read_include = noting_reader(tried);
         lang::SourceManager unbuilt_sources;

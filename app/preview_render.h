@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/preview_state.h"
+#include "lang/params.h"
 
 namespace wsd::app {
 
@@ -33,7 +34,9 @@ std::string encode_png(int width, int height, const std::vector<float>& rgb);
 
 class PreviewRenderer {
 public:
-    PreviewRenderer(PreviewState& state, std::string scene_path, int threads);
+    // `params`: the --define values (may be null; must outlive the renderer).
+    PreviewRenderer(PreviewState& state, std::string scene_path, int threads,
+                    const lang::ParamTable* params = nullptr);
 
     void request();  // renders again (cancelling a render in flight)
     void stop();     // ends run() soon; a render in flight is cancelled
@@ -51,6 +54,7 @@ private:
     PreviewState& state_;
     std::string scene_;
     int threads_ = 0;
+    const lang::ParamTable* params_ = nullptr;
 
     std::mutex mutex_;
     std::condition_variable cv_;

@@ -256,6 +256,17 @@ sphere { center <0, 0, 0>  radius 1.5  material material { color <1, 0, 0> } }
         p.kill()
 
 
+def test_defines_reach_param(work):
+    write(os.path.join(work, "s.wsd"), SCENE.replace("width 64", 'width param("w", 64)'))
+    p = Preview(work, "s.wsd", "-D", "w=40")
+    try:
+        s = p.wait(done(1), "the first render")
+        check(s["width"] == 40 and s["diagnostics"] == "", "-D w=40 sets the width: %s" % s)
+        p.stop()
+    finally:
+        p.kill()
+
+
 def test_range_headers_are_ignored(work):
     write(os.path.join(work, "s.wsd"), SCENE)
     p = Preview(work, "s.wsd")

@@ -186,3 +186,14 @@ TEST_CASE("a preview of a scene whose texture is missing watches the texture", "
     renderer.stop();
     loop.join();
 }
+
+TEST_CASE("preview: a bad --define is a usage error at once", "[preview]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", kScene);
+    RunResult r = run_wsd(dir, "preview s.wsd --port 0 -D w", "timeout 20");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("NAME=EXPR") != std::string::npos);
+    r = run_wsd(dir, "preview s.wsd --port 0 --define 'w=1 +'", "timeout 20");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--define w") != std::string::npos);
+}
