@@ -325,7 +325,8 @@ int run_cli(int argc, char** argv) {
     preview->add_option("SCENE", preview_args.scene, "scene file")->required();
     preview->add_option("--port", preview_args.port, "TCP port (default 8642; 0 = any free one)")
         ->check(integer_in(0, 65535));
-    preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)");
+    preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)")
+        ->check(non_empty);
     preview
         ->add_option("-D,--define", preview_args.defines,
                      "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")

@@ -31,7 +31,8 @@ std::string url(const std::string& host, int port) {
 int run_preview(const PreviewArgs& args) {
     std::string error;
     if (args.scene == "-") return fail(exit_code::usage, "preview needs a scene file, not stdin");
-    if (!can_open_for_reading(args.scene, error)) return fail(exit_code::io, error);
+    std::string text;  // read once here only to refuse what is not a readable file, as `check` does
+    if (!read_input_file(args.scene, text, error)) return fail(exit_code::io, error);
     lang::ParamTable params;
     if (const int status = evaluate_defines(args.defines, params); status != exit_code::ok) return status;
     // A page closed mid-answer must not end the server.

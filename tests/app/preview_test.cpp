@@ -187,6 +187,17 @@ TEST_CASE("a preview of a scene whose texture is missing watches the texture", "
     loop.join();
 }
 
+TEST_CASE("preview: an empty host and a scene that is not a regular file are refused at once", "[preview]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", kScene);
+    RunResult r = run_wsd(dir, "preview s.wsd --port 0 --host ''", "timeout 20");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--host") != std::string::npos);
+    r = run_wsd(dir, "preview /dev/zero --port 0", "timeout 20");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("not a regular file") != std::string::npos);
+}
+
 TEST_CASE("preview: a bad --define is a usage error at once", "[preview]") {
     TempDir dir;
     write_file(dir / "s.wsd", kScene);
