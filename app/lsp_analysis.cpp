@@ -154,14 +154,7 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text)
             text = std::move(*t);
             return true;
         }
-        render::FileBytes bytes;  // as the interpreter reads files, with its reasons
-        if (!render::read_whole_file(path, bytes, reason)) {
-            if (!reason.empty())
-                reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
-            return false;
-        }
-        text.assign(bytes.view());
-        return true;
+        return lang::read_include_file(path, text, reason);  // as the interpreter reads files
     };
     json out = json::array();
     const LineIndex index(doc.text);

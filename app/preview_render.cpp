@@ -36,14 +36,7 @@ void append_bytes(void* context, void* data, int size) {
 lang::IncludeReader noting_reader(std::vector<std::string>& tried) {
     return [&tried](const std::string& path, std::string& text, std::string& reason) {
         tried.push_back(path);
-        render::FileBytes bytes;
-        if (!render::read_whole_file(path, bytes, reason)) {
-            if (!reason.empty())
-                reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
-            return false;
-        }
-        text.assign(bytes.view());
-        return true;
+        return lang::read_include_file(path, text, reason);
     };
 }
 

@@ -16,24 +16,26 @@
 
 #include "lang/builtins.h"
 #include "lang/large_stack.h"
+#include "lang/load.h"
 #include "lang/parser.h"
 #include "render/file_util.h"
 #include "render/text_util.h"
 
 namespace wsd::lang {
 
-namespace {
-
 // An include file's text; the reason starts in lower case, as it follows "cannot read ...: ".
-bool read_file(const std::string& path, std::string& out, std::string& reason) {
+bool read_include_file(const std::string& path, std::string& text, std::string& reason) {
     render::FileBytes bytes;
     if (!render::read_whole_file(path, bytes, reason)) {
-        reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
+        if (!reason.empty())
+            reason[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(reason[0])));
         return false;
     }
-    out.assign(bytes.view());
+    text.assign(bytes.view());
     return true;
 }
+
+namespace {
 
 using render::quoted;
 
@@ -265,7 +267,7 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         return;
     }
     std::string text, reason;
-    if (!(reader_ && *reader_ ? (*reader_)(path, text, reason) : read_file(path, text, reason))) {
+    if (!(reader_ && *reader_ ? (*reader_)(path, text, reason) : read_include_file(path, text, reason))) {
         diags_.error(at, "cannot read include file '" + path + "': " + reason);
         abort();
         return;

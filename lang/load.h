@@ -29,6 +29,10 @@ struct CheckSummary {
 // editor's reader gives its unsaved text. (The same alias is declared in lang/interpreter.h.)
 using IncludeReader = std::function<bool(const std::string& path, std::string& text, std::string& reason)>;
 
+// How included files are read from disk when no reader is given: a reader that wraps another
+// source (an editor's buffers, a list of the files tried) falls back to it.
+bool read_include_file(const std::string& path, std::string& text, std::string& reason);
+
 struct LoadOptions {
     bool fragment = false;  // a `.wsdi` file: no camera required, nothing is built
     bool build = true;      // build the render scene (loads textures, validates geometry)
