@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <numbers>
 
+#include "render/math.h"
+
 namespace wsd::lang {
 
 namespace {
@@ -85,17 +87,11 @@ std::map<std::string_view, BlockTable> make_tables() {
 }
 
 bool parallel(glm::dvec3 a, glm::dvec3 b) {
-    // Each taken to a largest component in [1, 2) (a power of two, exact), so that the test
-    // neither underflows for tiny vectors nor overflows for huge ones: a direction is a direction.
-    const auto unit_scale = [](glm::dvec3& v) {
-        const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-        if (m > 0 && std::isfinite(m))
-            v = glm::dvec3(std::ldexp(v.x, -std::ilogb(m)), std::ldexp(v.y, -std::ilogb(m)),
-                           std::ldexp(v.z, -std::ilogb(m)));
-    };
-    unit_scale(a);
-    unit_scale(b);
-    return glm::length(glm::cross(a, b)) <= render::kParallelSine * glm::length(a) * glm::length(b);
+    // As unit vectors (safe_normalize rescales tiny and huge ones), so that the test neither
+    // underflows nor overflows: a direction is a direction, whatever its length.
+    const glm::dvec3 ua = render::safe_normalize(a, glm::dvec3(0.0)),
+                     ub = render::safe_normalize(b, glm::dvec3(0.0));
+    return glm::length(glm::cross(ua, ub)) <= render::kParallelSine;
 }
 
 // sin and cos of an angle in degrees, exact at multiples of 90° so that quarter turns map axes

@@ -1,30 +1,12 @@
 // Camera frame construction and validation (wsd-language.md §4 "camera"; robustness.md R46, R47).
 #include "render/camera.h"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "render/math.h"
 
 namespace wsd::render {
-
-namespace {
-
-// v as a unit vector, or 0 when it is zero or not finite. A length that would underflow or
-// overflow (components near 1e-160 or 1e160) is taken after scaling v by a power of two, so that
-// a tiny or huge vector keeps its direction; other vectors are divided by their length as is.
-Vec3 direction_of(const Vec3& v) {
-    const double len = glm::length(v);
-    if (len > 0x1p-500 && len < 0x1p500) return v / len;
-    const double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (!(m > 0) || !std::isfinite(m)) return Vec3(0.0);
-    const int e = -std::ilogb(m);
-    const Vec3 s(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e));
-    return s / glm::length(s);
-}
-
-}  // namespace
 
 std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int height, std::string& error) {
     if (!finite3(spec.position) || !finite3(spec.look_at) || !finite3(spec.up)) {
@@ -40,12 +22,14 @@ std::optional<Camera> Camera::create(const CameraSpec& spec, int width, int heig
         return std::nullopt;
     }
     const Vec3 view = spec.look_at - spec.position;
-    const Vec3 forward = direction_of(view);
+    // safe_normalize rescales a vector whose squared length underflows or overflows (a camera
+    // at 1e-300, an up of 1e300): a tiny or huge vector keeps its direction.
+    const Vec3 forward = safe_normalize(view, Vec3(0.0));
     if (forward == Vec3(0.0)) {
         error = "camera position and look_at must differ";
         return std::nullopt;
     }
-    const Vec3 up = direction_of(spec.up);
+    const Vec3 up = safe_normalize(spec.up, Vec3(0.0));
     if (up == Vec3(0.0)) {
         error = "camera up must be a non-zero vector";
         return std::nullopt;
