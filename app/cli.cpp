@@ -19,12 +19,12 @@ namespace wsd::app {
 
 namespace {
 
-// A whole decimal integer between lo and hi. CLI11's Range would call "abc" out of range; a
-// value that is not an integer at all deserves its own message.
 // An option whose value may not be empty: `-o ""` is a mistake, not the option left out.
 const CLI::Validator non_empty(
     [](std::string& text) -> std::string { return text.empty() ? "an empty value" : ""; }, "TEXT");
 
+// A whole decimal integer between lo and hi. CLI11's Range would call "abc" out of range; a
+// value that is not an integer at all deserves its own message.
 CLI::Validator integer_in(long long lo, long long hi) {
     const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
     return CLI::Validator(
@@ -42,16 +42,21 @@ CLI::Validator integer_in(long long lo, long long hi) {
         "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
+// Whether `text` is, whole, a number strtod reads (into `value`): no leading space, nothing after.
+bool read_number(const std::string& text, double& value) {
+    char* end = nullptr;
+    value = std::strtod(text.c_str(), &end);
+    return !text.empty() && end == text.c_str() + text.size() &&
+           !std::isspace(static_cast<unsigned char>(text[0]));
+}
+
 // A finite number > 0 and at most `hi` (written `hi_text`); NaN, infinities, zero and negatives
 // are usage errors.
 CLI::Validator positive_number(double hi, const std::string& hi_text) {
     return CLI::Validator(
         [hi, hi_text](std::string& text) -> std::string {
-            char* end = nullptr;
-            const double value = std::strtod(text.c_str(), &end);
-            if (text.empty() || end != text.c_str() + text.size() ||
-                std::isspace(static_cast<unsigned char>(text[0])))
-                return "'" + text + "' is not a number";
+            double value = 0;
+            if (!read_number(text, value)) return "'" + text + "' is not a number";
             if (!std::isfinite(value) || value <= 0 || value > hi)
                 return text + " is not a number > 0 and at most " + hi_text;
             return "";
@@ -62,12 +67,8 @@ CLI::Validator positive_number(double hi, const std::string& hi_text) {
 // Any number strtod reads, whole (whether it may be infinite or NaN is the command's to say).
 const CLI::Validator a_number(
     [](std::string& text) -> std::string {
-        char* end = nullptr;
-        (void)std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() ||
-            std::isspace(static_cast<unsigned char>(text[0])))
-            return "'" + text + "' is not a number";
-        return "";
+        double value = 0;
+        return read_number(text, value) ? "" : "'" + text + "' is not a number";
     },
     "NUMBER");
 
@@ -87,11 +88,15 @@ std::string parse_error_message(const CLI::ParseError& e) {
     return text;
 }
 
-void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
-    cmd.add_option("-D,--define", input.defines,
+void add_define_option(CLI::App& cmd, std::vector<std::string>& defines) {
+    cmd.add_option("-D,--define", defines,
                    "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
         ->allow_extra_args(false)  // `-D a=1 SCENE`: SCENE is not a second define
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+void add_scene_input(CLI::App& cmd, SceneInputArgs& input) {
+    add_define_option(cmd, input.defines);
     cmd.add_flag("--no-warnings", input.no_warnings, "print errors only");
 }
 
@@ -327,11 +332,7 @@ int run_cli(int argc, char** argv) {
         ->check(integer_in(0, 65535));
     preview->add_option("--host", preview_args.host, "address to serve on (default 127.0.0.1)")
         ->check(non_empty);
-    preview
-        ->add_option("-D,--define", preview_args.defines,
-                     "NAME=EXPR: the value param(\"NAME\", DEFAULT) returns in the scene (repeatable)")
-        ->allow_extra_args(false)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    add_define_option(*preview, preview_args.defines);
     preview->add_option("--threads", preview_args.threads, "render threads; 0 = all cores")
         ->check(integer_in(0, 4096));
 
