@@ -94,11 +94,20 @@ std::vector<Piece> pieces(const std::string& text) {
 
 // The comments of `text`, their line breaks as LF (the formatter writes no CR).
 std::vector<std::string> comments_of(const std::string& text) {
-    static const std::regex line_break("\r\n?");
     std::vector<std::string> out;
-    for (const Piece& p : pieces(text))
-        if (p.comment)
-            out.push_back(std::regex_replace(text.substr(p.begin, p.end - p.begin), line_break, "\n"));
+    for (const Piece& p : pieces(text)) {
+        if (!p.comment) continue;
+        std::string c;
+        for (size_t i = p.begin; i < p.end; ++i) {
+            if (text[i] != '\r') {
+                c += text[i];
+            } else {
+                c += '\n';
+                if (i + 1 < p.end && text[i + 1] == '\n') ++i;
+            }
+        }
+        out.push_back(std::move(c));
+    }
     return out;
 }
 
