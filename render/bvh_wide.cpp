@@ -43,10 +43,13 @@ float leaf_cost(float area, uint32_t count) {
 using Costs = std::array<float, kBvhWidth>;
 
 // The least cost of spreading two children whose costs are a and b over j lanes (2 <= j), and
-// how many of them go to the first child (the fewest of those that tie).
+// how many of them go to the first child (the fewest of those that tie). One lane for the first
+// child is the answer to beat, so that one is chosen even when every cost is infinite (boxes
+// near the float range) and none compares less.
 float spread(const Costs& a, const Costs& b, int j, int& first_lanes) {
-    float best = std::numeric_limits<float>::infinity();
-    for (int k = 1; k < j; ++k) {
+    float best = a[0] + b[j - 2];
+    first_lanes = 1;
+    for (int k = 2; k < j; ++k) {
         const float c = a[k - 1] + b[j - k - 1];
         if (c < best) {
             best = c;
