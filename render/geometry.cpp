@@ -119,15 +119,17 @@ struct ClosestHit : OneRayTest {
     Counters& c;
 
     bool leaf(const Child& e) {
+        const double before = best.limit;
         closest_in<kFilter>(g, r, e.first(), e.count(), best, c);
-        limit = to_float_up(best.limit);
+        if (best.limit != before) limit = to_float_up(best.limit);  // a hit: rarely
         return false;
     }
 #if defined(WSD_AVX_DISPATCH)
     [[gnu::target("avx")]] bool leaf_avx(const Child& e) {
         if (kFilter == 2 || !g.tris_in_order) return leaf(e);
+        const double before = best.limit;
         closest_in_avx(g, r, e.first(), e.count(), best, c);
-        limit = to_float_up(best.limit);
+        if (best.limit != before) limit = to_float_up(best.limit);
         return false;
     }
 #endif

@@ -258,7 +258,11 @@ template <class Group, class Limit, class Hit>
 // tris[first] exactly when every entry before it is a triangle (a mesh) and a few entries off
 // otherwise; a wrong guess costs a wasted fetch, never a different answer.
 [[gnu::always_inline]] inline void prefetch_leaf_data(const Impl& g, uint32_t first) {
-    if (!g.tris_in_order) __builtin_prefetch(g.order.data() + first);
+    if (g.tris_in_order) {  // a mesh: the leaf's first triangle is tris[first]
+        __builtin_prefetch(g.tris.data() + first);
+        return;
+    }
+    __builtin_prefetch(g.order.data() + first);
     if (!g.tris.empty()) __builtin_prefetch(g.tris.data() + std::min<size_t>(first, g.tris.size() - 1));
 }
 
