@@ -105,35 +105,69 @@ static_assert(kBvhWidth % 4 == 0 && kBvhWidth <= 16);
 
 // Per-ray constants of the slab test, and the test of a node's children at once.
 struct RayBoxTest {
-    float o_near[3], o_far[3], inv[3];
-    int near_off[3], far_off[3];  // the near and far plane rows: offsets into BvhWideNode, in floats
+    // Per axis (the fourth lane pads the rows, so that init writes each with one store).
+    alignas(16) float o_near[4], o_far[4], inv[4];
+    alignas(16) int near_off[4],
+        far_off[4];  // the near and far plane rows: offsets into BvhWideNode, in floats
 #if defined(__SSE2__)
     __m128 o_near4[3], o_far4[3], inv4[3];
 #endif
 
+    // The near plane is the lower bound when d > 0: its distance is underestimated by taking the
+    // origin rounded up, the far one's overestimated by rounding it down.
     void init(const Vec3& o, const Vec3& d) {
 #if defined(__SSE2__)
-        const __m128d r01 = _mm_div_pd(_mm_set1_pd(1.0), _mm_set_pd(d.y, d.x));  // two at a time
-        const double rec[3] = {_mm_cvtsd_f64(r01), _mm_cvtsd_f64(_mm_unpackhi_pd(r01, r01)), 1.0 / d.z};
+        // The scalar code below, three axes at once, bit for bit: the reciprocals are the same
+        // IEEE divisions, and to_float_down / to_float_up's steps are taken lane by lane.
+        const __m128d o01 = _mm_set_pd(o.y, o.x), o2 = _mm_set_sd(o.z);
+        const __m128d d01 = _mm_set_pd(d.y, d.x), d2 = _mm_set_sd(d.z);
+        const __m128d one = _mm_set1_pd(1.0);
+        const __m128 rec = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(one, d01)),
+                                         _mm_cvtpd_ps(_mm_div_pd(one, _mm_set_pd(1.0, d.z))));
+        const __m128 f = _mm_movelh_ps(_mm_cvtpd_ps(o01), _mm_cvtpd_ps(o2));  // to nearest
+        const __m128d b01 = _mm_cvtps_pd(f), b2 = _mm_cvtps_pd(_mm_movehl_ps(f, f));
+        const __m128 below = _mm_shuffle_ps(_mm_castpd_ps(_mm_cmplt_pd(b01, o01)),
+                                            _mm_castpd_ps(_mm_cmplt_pd(b2, o2)), _MM_SHUFFLE(2, 0, 2, 0));
+        const __m128 above = _mm_shuffle_ps(_mm_castpd_ps(_mm_cmpgt_pd(b01, o01)),
+                                            _mm_castpd_ps(_mm_cmpgt_pd(b2, o2)), _MM_SHUFFLE(2, 0, 2, 0));
+        const __m128i bits = _mm_castps_si128(f), ones = _mm_set1_epi32(-1), one_i = _mm_set1_epi32(1);
+        const __m128i sign = _mm_srai_epi32(bits, 31);
+        const __m128i up =
+            _mm_add_epi32(bits, _mm_and_si128(_mm_or_si128(sign, one_i), _mm_castps_si128(below)));
+        const __m128i down = _mm_add_epi32(
+            bits, _mm_and_si128(_mm_or_si128(_mm_xor_si128(sign, ones), one_i), _mm_castps_si128(above)));
+        // Lanes whose direction has its sign bit set (std::signbit; float keeps it, -0 included).
+        const __m128i neg =
+            _mm_srai_epi32(_mm_castps_si128(_mm_movelh_ps(_mm_cvtpd_ps(d01), _mm_cvtpd_ps(d2))), 31);
+        const __m128i near = _mm_or_si128(_mm_and_si128(neg, down), _mm_andnot_si128(neg, up));
+        const __m128i far = _mm_or_si128(_mm_and_si128(neg, up), _mm_andnot_si128(neg, down));
+        _mm_store_ps(o_near, _mm_castsi128_ps(near));
+        _mm_store_ps(o_far, _mm_castsi128_ps(far));
+        _mm_store_ps(inv, rec);
+        const __m128i row = _mm_setr_epi32(0, kBvhWidth, 2 * kBvhWidth, 3 * kBvhWidth);
+        const __m128i other = _mm_set1_epi32(3 * kBvhWidth);
+        _mm_store_si128(reinterpret_cast<__m128i*>(near_off), _mm_add_epi32(row, _mm_and_si128(neg, other)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(far_off),
+                        _mm_add_epi32(row, _mm_andnot_si128(neg, other)));
+        const __m128 vn = _mm_castsi128_ps(near), vf = _mm_castsi128_ps(far);
+        o_near4[0] = _mm_shuffle_ps(vn, vn, 0x00), o_near4[1] = _mm_shuffle_ps(vn, vn, 0x55);
+        o_near4[2] = _mm_shuffle_ps(vn, vn, 0xaa);
+        o_far4[0] = _mm_shuffle_ps(vf, vf, 0x00), o_far4[1] = _mm_shuffle_ps(vf, vf, 0x55);
+        o_far4[2] = _mm_shuffle_ps(vf, vf, 0xaa);
+        inv4[0] = _mm_shuffle_ps(rec, rec, 0x00), inv4[1] = _mm_shuffle_ps(rec, rec, 0x55);
+        inv4[2] = _mm_shuffle_ps(rec, rec, 0xaa);
 #else
         const double rec[3] = {1.0 / d.x, 1.0 / d.y, 1.0 / d.z};
-#endif
         for (int a = 0; a < 3; ++a) {
             bool neg = std::signbit(d[a]);
-            // The near plane is the lower bound when d > 0: its distance is underestimated by
-            // taking the origin rounded up, the far one's overestimated by rounding it down.
             float lo = to_float_down(o[a]), hi = to_float_up(o[a]);
             o_near[a] = neg ? lo : hi;
             o_far[a] = neg ? hi : lo;
             inv[a] = static_cast<float>(rec[a]);
             near_off[a] = (neg ? 3 * kBvhWidth : 0) + kBvhWidth * a;
             far_off[a] = (neg ? 0 : 3 * kBvhWidth) + kBvhWidth * a;
-#if defined(__SSE2__)
-            o_near4[a] = _mm_set1_ps(o_near[a]);
-            o_far4[a] = _mm_set1_ps(o_far[a]);
-            inv4[a] = _mm_set1_ps(inv[a]);
-#endif
         }
+#endif
     }
 
     static constexpr float kWiden = static_cast<float>(1 + 2 * gamma_f(3));
