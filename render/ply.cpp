@@ -460,7 +460,9 @@ void PlyParser::element(Source& src, const Element& e, bool vertices, bool faces
         triangles_.reserve(expected);
         triangle_faces_.reserve(expected);
     }
-    const uint64_t nv = positions_.size();
+    // Indices are checked against the header's vertex count: the file ends in an error unless it
+    // holds that many vertices, so this is the final count even when the faces come first.
+    const uint64_t nv = elements_[size_t(vertex_element_)].count;
     std::vector<uint32_t> corners;
     double slot[kRoles] = {};
     std::string_view token;
@@ -527,12 +529,6 @@ void PlyParser::element(Source& src, const Element& e, bool vertices, bool faces
 
 template <class Source>
 void PlyParser::body(Source& src) {
-    if (face_element_ < vertex_element_) {
-        // Faces before vertices: indices can only be checked against the header's count.
-        // Rare enough that reading the vertices first (a second pass) is not worth the code.
-        fail_line(elements_[size_t(face_element_)].line,
-                  "the 'face' element comes before 'vertex' (not supported)");
-    }
     for (size_t k = 0; k < elements_.size(); ++k)
         element(src, elements_[k], int(k) == vertex_element_, int(k) == face_element_);
 }

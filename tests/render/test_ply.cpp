@@ -229,6 +229,36 @@ TEST_CASE("PLY: an element without properties is read as nothing, whatever its c
     }
 }
 
+TEST_CASE("PLY: the face element may come before the vertex element", "[ply]") {
+    // Elements may be declared in any order; the indices are checked against the vertex count.
+    for (Enc enc : {Enc::Ascii, Enc::Little, Enc::Big}) {
+        INFO(static_cast<int>(enc));
+        const auto file = [&](int last_index) {
+            PlyWriter w{enc, {}};
+            w.out = std::string("ply\nformat ") +
+                    (enc == Enc::Ascii    ? "ascii"
+                     : enc == Enc::Little ? "binary_little_endian"
+                                          : "binary_big_endian") +
+                    " 1.0\nelement face 2\nproperty list uchar int vertex_indices\nelement vertex 4\n"
+                    "property float x\nproperty float y\nproperty float z\nend_header\n";
+            w.u8(3), w.i32(0), w.i32(1), w.i32(2), w.end_line();
+            w.u8(3), w.i32(0), w.i32(2), w.i32(last_index), w.end_line();
+            for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) w.f32(v);
+            w.end_line();
+            return w.out;
+        };
+        const MeshFileResult r = parse_ply("f.ply", file(3));
+        INFO(r.error);
+        REQUIRE(r.mesh);
+        CHECK(r.mesh->vertices.size() == 4);
+        CHECK(r.mesh->vertices[2] == glm::vec3(1, 1, 0));
+        CHECK(r.mesh->faces == std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}});
+        const MeshFileResult bad = parse_ply("f.ply", file(4));
+        CHECK_FALSE(bad.mesh);
+        CHECK(bad.error.find("vertex index 4 out of range (the file has 4 vertices)") != std::string::npos);
+    }
+}
+
 TEST_CASE("PLY: a mesh reads the same from PLY and OBJ", "[ply]") {
     const std::string obj = "v 0 0 0\nv 1 0 0\nv 1.5 1 0\nv 0.5 1.6 0\nv -0.5 1 0\nf 1 2 3 4 5\n";
     const std::string ply =
