@@ -1,6 +1,6 @@
 // Mesh files: what reading one gives (a mesh, or an error, and notes), the reader chosen by the
-// file's first bytes (PLY files start with "ply"; anything else is read as OBJ), and the name a
-// face goes by in messages.
+// file's first bytes (PLY files start with "ply"; anything else but a `.ply` is read as OBJ), and
+// the name a face goes by in messages.
 #pragma once
 
 #include <cstddef>
@@ -19,7 +19,8 @@ struct MeshFileResult {
     std::vector<std::string> notes;
 };
 
-// Reads `path` whole and parses it as PLY (when it starts with "ply") or OBJ.
+// Reads `path` whole and parses it as PLY (when it starts with "ply") or OBJ; a file named
+// `.ply` that does not start with "ply" is an error.
 MeshFileResult load_mesh_file(const std::string& path);
 
 // "face 12 (models/bunny.obj line 40)": face `face` of `m` with where it came from, for messages.

@@ -606,7 +606,10 @@ MeshFileResult PlyParser::run() {
 }  // namespace
 
 bool looks_like_ply(std::string_view bytes) {
-    return starts_with(bytes, "ply\n") || starts_with(bytes, "ply\r\n");
+    if (!starts_with(bytes, "ply")) return false;
+    size_t i = 3;  // trailing blanks are allowed, as on every header line
+    while (i < bytes.size() && (bytes[i] == ' ' || bytes[i] == '\t')) ++i;
+    return starts_with(bytes.substr(i), "\n") || starts_with(bytes.substr(i), "\r\n");
 }
 
 MeshFileResult parse_ply(const std::string& name, std::string_view bytes) {

@@ -13,7 +13,7 @@
 
 namespace wsd::render {
 
-// True when `bytes` starts like a PLY file ("ply" and a line end).
+// True when `bytes` starts like a PLY file ("ply", optional blanks and a line end).
 bool looks_like_ply(std::string_view bytes);
 
 // Parses a whole PLY file; `name` names it in messages ("FILE:LINE: …" for the header and ASCII

@@ -92,3 +92,25 @@ TEST_CASE("a broken PLY file is an error at the scene's file property", "[ply][e
         std::string::npos);
     CHECK_FALSE(fs::exists(dir.path() / "s.png"));
 }
+
+TEST_CASE("a file named .ply that is not PLY is an error, not read as OBJ", "[ply][e2e]") {
+    TempDir dir;
+    const std::string rest =
+        "format ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    write_file(dir / "upper.PLY", "PLY\n" + rest);
+    write_file(dir / "s.wsd", std::string(kHead) + "mesh { file \"upper.PLY\" }\n");
+    RunResult r = run_wsd(dir, "check s.wsd");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("s.wsd:4:13: error: upper.PLY:1: not a PLY file: its first line is not 'ply'") !=
+          std::string::npos);
+    CHECK(r.err.find("OBJ") == std::string::npos);
+    // Blanks after "ply" are allowed, as after any header keyword.
+    write_file(dir / "blank.ply", "ply \n" + rest);
+    write_file(dir / "t.wsd",
+               std::string(kHead) + "mesh { file \"blank.ply\"  material { color <1, 1, 1> } }\n");
+    r = run_wsd(dir, "check t.wsd");
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK(r.out.find("1 triangle") != std::string::npos);
+}

@@ -122,6 +122,8 @@ TEST_CASE("PLY: ASCII and both binary byte orders read the same mesh", "[ply]") 
 TEST_CASE("PLY: files are told from OBJ by their first line", "[ply]") {
     CHECK(looks_like_ply("ply\nformat ascii 1.0\n"));
     CHECK(looks_like_ply("ply\r\nformat ascii 1.0\r\n"));
+    CHECK(looks_like_ply("ply \t\nformat ascii 1.0\n"));  // trailing blanks, as on any header line
+    CHECK(looks_like_ply("ply  \r\nformat ascii 1.0\r\n"));
     CHECK_FALSE(looks_like_ply("v 0 0 0\n"));
     CHECK_FALSE(looks_like_ply("plywood\n"));
 }
