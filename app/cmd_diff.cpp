@@ -17,23 +17,19 @@ namespace wsd::app {
 
 namespace {
 
-bool is_8bit(render::ImageFormat f) {
-    return f == render::ImageFormat::Png || f == render::ImageFormat::Jpeg || f == render::ImageFormat::Bmp ||
-           f == render::ImageFormat::Tga;
-}
-
 int read_display(const std::string& path, DisplayImage& image) {
     std::string error;
     if (!can_open_for_reading(path, error)) return fail(exit_code::io, error);
     render::Film film;
-    if (!read_image_file(path, film, error))
+    bool eight_bit = false;  // by the file's content, not its name
+    if (!read_image_file(path, film, error, &eight_bit))
         return fail(exit_code::input_error, "cannot read image '" + path + "': " + error);
     const auto nonfinite =
         std::count_if(film.rgb.begin(), film.rgb.end(), [](float v) { return !std::isfinite(v); });
     if (nonfinite > 0)
         std::cerr << "wsd: note: '" << path << "' holds " << nonfinite
                   << " values that are not finite: NaN and -inf are compared as black, +inf as white\n";
-    image = to_display(film, is_8bit(render::format_from_extension(path)));
+    image = to_display(film, eight_bit);
     return exit_code::ok;
 }
 

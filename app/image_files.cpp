@@ -180,8 +180,9 @@ bool write_image_file(const std::string& path, const render::Film& film, std::st
     return write_image_with_aovs(path, film, render::AovFilm{}, AovSelection{}, error);
 }
 
-bool read_image_file(const std::string& path, render::Film& film, std::string& error) {
-    if (!starts_like_exr(path)) return render::read_image(path, film, error);
+bool read_image_file(const std::string& path, render::Film& film, std::string& error, bool* eight_bit) {
+    if (eight_bit) *eight_bit = false;
+    if (!starts_like_exr(path)) return render::read_image(path, film, error, eight_bit);
     render::FileBytes file;
     if (!render::read_whole_file(path, file, error)) {
         error = "cannot read '" + path + "': " + error;

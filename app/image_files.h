@@ -49,7 +49,8 @@ bool write_image_with_aovs(const std::string& path, const render::Film& film, co
 bool write_image_file(const std::string& path, const render::Film& film, std::string& error);
 
 // Reads any supported image into linear RGB (.exr by its magic number, the rest as
-// render::read_image does). False + error naming the file.
-bool read_image_file(const std::string& path, render::Film& film, std::string& error);
+// render::read_image does; `eight_bit` as there). False + error naming the file.
+bool read_image_file(const std::string& path, render::Film& film, std::string& error,
+                     bool* eight_bit = nullptr);
 
 }  // namespace wsd::app

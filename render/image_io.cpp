@@ -235,7 +235,8 @@ bool write_image(const std::string& path, const Film& film, std::string& error) 
     return true;
 }
 
-bool read_image(const std::string& path, Film& film, std::string& error) {
+bool read_image(const std::string& path, Film& film, std::string& error, bool* eight_bit) {
+    if (eight_bit) *eight_bit = false;
     FileBytes file;
     if (!read_whole_file(path, file, error)) {
         error = "cannot read " + quoted(path) + ": " + error;
@@ -303,6 +304,7 @@ bool read_image(const std::string& path, Film& film, std::string& error) {
     film.rgb.resize(n);
     for (size_t i = 0; i < n; ++i) film.rgb[i] = table[px[i]];
     stbi_image_free(px);
+    if (eight_bit) *eight_bit = true;
     return true;
 }
 

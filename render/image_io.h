@@ -31,6 +31,8 @@ std::string encode_pfm(int width, int height, int channels, const float* data);
 size_t decode_pfm(std::string_view bytes, Film& film, std::string& error);
 
 // Reads any supported format into linear RGB (8-bit formats are sRGB-decoded). False + error.
-bool read_image(const std::string& path, Film& film, std::string& error);
+// `eight_bit`, when given, is set to whether the file held 8-bit values (PNG, JPEG, BMP or TGA
+// at 8 bits a channel; not a 16-bit PNG, HDR or PFM), whatever its name.
+bool read_image(const std::string& path, Film& film, std::string& error, bool* eight_bit = nullptr);
 
 }  // namespace wsd::render

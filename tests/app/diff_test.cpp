@@ -33,6 +33,22 @@ TEST_CASE("diff of an image with itself: RMSE 0, PSNR inf, SSIM 1", "[diff]") {
     CHECK(field(r.out, "SSIM") == "1");
 }
 
+TEST_CASE("diff tells 8-bit images by their content, not their file name", "[diff]") {
+    // The same bytes under a name without an image extension are the same 8-bit image.
+    TempDir dir;
+    write_tga(dir / "a.tga", 12, 10, gradient(12, 10, 0));
+    write_file(dir / "copy", read_file(dir / "a.tga"));
+    write_file(dir / "copy.hdr", read_file(dir / "a.tga"));
+    for (const char* other : {"copy", "copy.hdr"}) {
+        INFO(other);
+        const RunResult r = run_wsd(dir, std::string("diff a.tga ") + other);
+        CHECK(r.status == 0);
+        CHECK(field(r.out, "RMSE") == "0");
+        CHECK(field(r.out, "PSNR") == "inf");
+        CHECK(field(r.out, "max abs error") == "0");
+    }
+}
+
 TEST_CASE("diff of a constant offset of 10 levels reports exactly 10/255", "[diff]") {
     TempDir dir;
     write_tga(dir / "a.tga", 12, 10, gradient(12, 10, 0));
