@@ -343,11 +343,14 @@ void PlyParser::header_line(std::string_view line, uint32_t number) {
             fail_line(number, "unknown PLY format '" + printable(w[1]) + "'");
         if (w[2] != "1.0" && w[2] != "1")
             fail_line(number, "unsupported PLY version '" + printable(w[2]) + "' (1.0 is read)");
-        if (number != 2) fail_line(number, "'format' must be the header's second line");
+        if (format_seen_) fail_line(number, "'format' is given twice");
         format_seen_ = true;
         return;
     }
-    if (number == 2) fail_line(number, "expected 'format' on the header's second line");
+    // Comments may come before the format line (some writers put them there); nothing else.
+    if (!format_seen_)
+        fail_line(number, number == 2 ? std::string("expected 'format' on the header's second line")
+                                      : "expected 'format' before '" + printable(key) + "'");
     if (key == "element") {
         if (w.size() != 3) fail_line(number, "expected 'element NAME COUNT'");
         Element e;

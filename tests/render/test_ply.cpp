@@ -165,6 +165,8 @@ TEST_CASE("PLY: malformed files are errors that say where", "[ply]") {
     };
     const std::vector<Case> cases = {
         {"ply\nelement vertex 3\n", "e.ply:2: expected 'format' on the header's second line"},
+        {"ply\ncomment x\nelement vertex 3\n", "e.ply:3: expected 'format' before 'element'"},
+        {"ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", "e.ply:3: 'format' is given twice"},
         {"ply\nformat ascii 2.0\nend_header\n", "e.ply:2: unsupported PLY version '2.0' (1.0 is read)"},
         {"ply\nformat text 1.0\nend_header\n", "e.ply:2: unknown PLY format 'text'"},
         {"ply\nformat ascii 1.0\nelement vertex 3\n", "e.ply: the header has no 'end_header' line"},
@@ -203,6 +205,8 @@ TEST_CASE("PLY: malformed files are errors that say where", "[ply]") {
         CHECK(r.error == c.error);
     }
     CHECK(parse_ply("e.ply", head + body).mesh);
+    // Comments (and blank lines) may come before the format line, as some writers put them there.
+    CHECK(parse_ply("e.ply", "ply\ncomment by a scanner\n\nobj_info x\n" + head.substr(4) + body).mesh);
     CHECK(parse_ply("e.ply", head + "+0 0 0\n+1 0 0\n0 +1 0\n3 0 1 2\n").mesh);
 }
 
