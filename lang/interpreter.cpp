@@ -266,38 +266,49 @@ void Interpreter::exec_include(const IncludeStmt& stmt) {
         }
         return;
     }
-    std::string text, reason;
-    if (!(reader_ && *reader_ ? (*reader_)(path, text, reason) : read_include_file(path, text, reason))) {
-        diags_.error(at, "cannot read include file '" + path + "': " + reason);
-        abort();
-        return;
+    // A file runs again in each scope that includes it (a loop body, say), but it is read and
+    // parsed once per scene for each path that names it (paths inside it resolve against that):
+    // every run shares that text and AST.
+    auto parsed = parsed_includes_.find(path);
+    if (parsed == parsed_includes_.end()) {
+        std::string text, reason;
+        if (!(reader_ && *reader_ ? (*reader_)(path, text, reason) : read_include_file(path, text, reason))) {
+            diags_.error(at, "cannot read include file '" + path + "': " + reason);
+            abort();
+            return;
+        }
+        const uint32_t file = sources_.add(path, std::move(text));
+        diags_.push_include(at);
+        const size_t errors_before = diags_.error_count();
+        auto program = std::make_unique<Program>(parse(file, sources_, diags_));
+        diags_.pop_include();
+        const bool ok = diags_.error_count() == errors_before;
+        programs_.push_back(std::move(program));
+        if (!ok) {
+            abort();  // its definitions are missing: running on would only cascade
+            return;
+        }
+        parsed = parsed_includes_.emplace(path, programs_.back().get()).first;
     }
+    const Program& program = *parsed->second;
     scope_->included.push_back({key, at});
     // Objects go to the scene (shapes or instances) or to the body being evaluated.
     auto objects_added = [this] {
         return scene_.primitives() + scene_.instances() + (members_ ? members_->size() : 0);
     };
     const size_t objects_before = objects_added();
-    const uint32_t file = sources_.add(path, std::move(text));
     diags_.push_include(at);
-    const size_t errors_before = diags_.error_count();
-    auto program = std::make_unique<Program>(parse(file, sources_, diags_));
-    if (diags_.error_count() == errors_before) {
-        include_stack_.push_back(key);
-        include_stack_files_.push_back(file);
-        chain_ = std::make_shared<IncludeSite>(IncludeSite{at, chain_});
-        ++include_depth_;
-        exec_all(program->statements);  // in the scope where the include stands
-        --include_depth_;
-        chain_ = chain_->parent;
-        include_stack_.pop_back();
-        include_stack_files_.pop_back();
-        adds_objects_[key] = objects_added() > objects_before;
-    } else {
-        abort();  // its definitions are missing: running on would only cascade
-    }
+    include_stack_.push_back(key);
+    include_stack_files_.push_back(program.file);
+    chain_ = std::make_shared<IncludeSite>(IncludeSite{at, chain_});
+    ++include_depth_;
+    exec_all(program.statements);  // in the scope where the include stands
+    --include_depth_;
+    chain_ = chain_->parent;
+    include_stack_.pop_back();
+    include_stack_files_.pop_back();
+    adds_objects_[key] = objects_added() > objects_before;
     diags_.pop_include();
-    programs_.push_back(std::move(program));
 }
 
 void Interpreter::exec_object(const Stmt& added) {

@@ -218,6 +218,7 @@ private:
     const Included* visible_include(const std::string& key) const;
     std::unordered_map<std::string, bool> adds_objects_;  // canonical path -> its run added objects
     std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
+    std::unordered_map<std::string, const Program*> parsed_includes_;  // path as resolved -> its AST
     ObjCache obj_cache_;
     std::vector<Span> value_spans_;  // eval_block's scratch: the value spans of the item it admits
 };

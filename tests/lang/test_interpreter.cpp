@@ -599,6 +599,20 @@ TEST_CASE("an include runs again in each loop iteration and in sibling scopes", 
     CHECK(messages(l->diags, l->sources, Severity::Warning).empty());
 }
 
+TEST_CASE("a file included in every loop iteration is read and parsed once", "[interpreter][include]") {
+    TempDir dir;
+    dir.write("place.wsdi", "sphere { center <i, 0, 0> radius 0.4 material material { } }\n");
+    const std::string main =
+        dir.write("main.wsd", kLitCamera + "for i in 0 .. 1000 { include \"place.wsdi\" }\n");
+    auto l = load_file(main);
+    REQUIRE(l->errors().empty());
+    REQUIRE(l->scene);
+    CHECK(l->scene->summary.objects == 1000);
+    CHECK(l->scene->spec.shapes.back().center == glm::dvec3(999, 0, 0));
+    // One source for the scene, one for the include: memory does not grow with the iterations.
+    CHECK(l->sources.size() == 2);
+}
+
 TEST_CASE("an include after an if-scoped include of the same file defines its names",
           "[interpreter][include]") {
     TempDir dir;
