@@ -23,6 +23,8 @@ const Binding* Scope::find(std::string_view name) const {
 void Scope::add(Binding binding) {
     constexpr size_t kIndexFrom = 16;  // linear search is faster for small scopes
     bindings.push_back(std::move(binding));
+    if (bindings.back().value && bindings.back().value->is(ValueType::Function))
+        functions.push_back(bindings.size() - 1);
     if (!index.empty()) {
         index.emplace(bindings.back().name, bindings.size() - 1);
     } else if (bindings.size() >= kIndexFrom) {
@@ -33,6 +35,7 @@ void Scope::add(Binding binding) {
 void Scope::clear() {
     bindings.clear();
     included.clear();
+    functions.clear();
     if (!index.empty()) index.clear();  // clear() on an empty map still wipes its buckets
     parent.reset();
 }
@@ -41,8 +44,8 @@ Interpreter::~Interpreter() {
     // A scope holds a function that holds the scope: drop every binding of every scope that may
     // be on such a cycle (the top scope and those that outlived their code).
     for (const std::weak_ptr<Scope>& weak : escaped_)
-        if (ScopePtr s = weak.lock()) s->bindings.clear();
-    if (top_) top_->bindings.clear();
+        if (ScopePtr s = weak.lock()) s->clear();
+    if (top_) top_->clear();
 }
 
 const Interpreter::Included* Interpreter::visible_include(const std::string& key) const {
@@ -72,17 +75,36 @@ void Interpreter::push_scope(ScopePtr parent) {
     scope_ = std::move(scope);
 }
 
+namespace {
+
+// How many of the references to `scope` come from functions bound in it and held by nothing else:
+// those keep the scope alive only for themselves.
+long self_held(const ScopePtr& scope) {
+    long n = 0;
+    if (scope.use_count() > 1)
+        for (size_t i : scope->functions) {
+            const FunctionPtr& f = scope->bindings[i].value->function();
+            if (f->scope == scope && f.use_count() == 1) ++n;
+        }
+    return n;
+}
+
+}  // namespace
+
+void Interpreter::prune_escaped() {
+    // A scope that escaped (a call's scope that bound a function it returned, say) becomes garbage
+    // once that function is dropped, but the function and the scope still hold each other: break
+    // such cycles here, so that a loop making closures runs in constant memory.
+    for (const std::weak_ptr<Scope>& weak : escaped_)
+        if (ScopePtr s = weak.lock(); s && s.use_count() == 1 + self_held(s)) s->clear();
+    std::erase_if(escaped_, [](const std::weak_ptr<Scope>& w) { return w.expired(); });
+    prune_escaped_at_ = 2 * escaped_.size() + 64;
+}
+
 void Interpreter::pop_scope() {
     if (scope_ == top_ || !scope_->parent) return;
     ScopePtr popped = std::move(scope_);
-    // Functions bound here and held by nothing else keep the scope alive only for themselves.
-    long self_held = 0;
-    if (popped.use_count() > 1)
-        for (const Binding& b : popped->bindings)
-            if (b.value && b.value->is(ValueType::Function) && b.value->function()->scope == popped &&
-                b.value->function().use_count() == 1)
-                ++self_held;
-    if (popped.use_count() == 1 + self_held) {
+    if (popped.use_count() == 1 + self_held(popped)) {
         scope_ = std::move(popped->parent);
         popped->clear();
         spare_.push_back(std::move(popped));
@@ -90,10 +112,7 @@ void Interpreter::pop_scope() {
     }
     scope_ = popped->parent;
     escaped_.push_back(popped);
-    if (escaped_.size() >= prune_escaped_at_) {
-        std::erase_if(escaped_, [](const std::weak_ptr<Scope>& w) { return w.expired(); });
-        prune_escaped_at_ = 2 * escaped_.size() + 64;
-    }
+    if (escaped_.size() >= prune_escaped_at_) prune_escaped();
 }
 
 void Interpreter::bind(std::string_view name, Span span, std::optional<Value> value) {

@@ -33,6 +33,7 @@ struct Scope {
     std::vector<Binding> bindings;
     std::unordered_map<std::string_view, size_t> index;  // built once a scope grows large
     std::vector<Included> included;
+    std::vector<size_t> functions;  // the bindings that hold a function value
     std::shared_ptr<Scope> parent;  // the lexically enclosing scope; null for the file's top scope
 
     const Binding* find(std::string_view name) const;

@@ -69,6 +69,12 @@ public:
     bool aborted() const { return aborted_; }
     bool camera_seen() const { return first_camera_.has_value(); }  // even one with errors
     uint64_t iterations() const { return iterations_; }
+    // Scopes that outlived their code and are still held (by functions): for tests.
+    size_t escaped_scopes_alive() const {
+        size_t n = 0;
+        for (const std::weak_ptr<Scope>& w : escaped_) n += w.expired() ? 0 : 1;
+        return n;
+    }
 
 private:
     using Binding = lang::Binding;
@@ -191,6 +197,7 @@ private:
     std::vector<ScopePtr> spare_;                // popped scopes nothing else held, reused by push_scope
     std::vector<std::weak_ptr<Scope>> escaped_;  // popped scopes still held (by functions)
     size_t prune_escaped_at_ = 64;
+    void prune_escaped();  // forgets the expired, frees those only their own functions hold
     int depth_ = 0;
     uint64_t iterations_ = 0;
     bool aborted_ = false;

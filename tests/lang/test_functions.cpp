@@ -146,6 +146,19 @@ TEST_CASE("closures keep their defining scope; one made in a loop sees that iter
     CHECK(e->get("b")->boolean());
 }
 
+TEST_CASE("closures that are dropped are freed, also those bound in their own call's scope", "[functions]") {
+    // Each call binds `get` in its own scope and returns it: the scope and the function hold each
+    // other until the loop drops the function.
+    auto e = evaluate_text(
+        "fn make(n) { fn get(x) { return x + n } return get }\n"
+        "let kept = make(7)\n"
+        "for i in 0 .. 10000 { let g = make(i)  if g(1) != i + 1 { let wrong = 1 / 0 } }\n"
+        "let a = kept(1)\n");
+    REQUIRE(e->errors().empty());
+    CHECK(number(*e, "a") == 8);
+    CHECK(e->interpreter->escaped_scopes_alive() < 200);
+}
+
 TEST_CASE("functions are values of type function", "[functions]") {
     auto e = evaluate_text(
         "fn twice(f, x) { return f(f(x)) }\nfn inc(x) { return x + 1 }\n"
