@@ -59,6 +59,7 @@ std::optional<Value> Interpreter::eval_image(const ImageExpr& expr) {
     BlockContext ctx = context();
     TexturePtr t = lower_image(*path, expr.path->span, ctx);
     if (!t) return std::nullopt;
+    if (named_image_paths_.insert(t->spec.image_path).second) named_images_.push_back(t);
     return Value::make_texture(std::move(t), expr.span);
 }
 

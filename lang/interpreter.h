@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "lang/ast.h"
@@ -69,6 +70,9 @@ public:
     bool aborted() const { return aborted_; }
     bool camera_seen() const { return first_camera_.has_value(); }  // even one with errors
     uint64_t iterations() const { return iterations_; }
+    // Each image file that an `image` texture evaluated here names (the first texture per path),
+    // used by an object or not: load_scene reads them all.
+    const std::vector<TexturePtr>& named_images() const { return named_images_; }
     // Scopes that outlived their code and are still held (by functions): for tests.
     size_t escaped_scopes_alive() const {
         size_t n = 0;
@@ -227,6 +231,8 @@ private:
     std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
     std::unordered_map<std::string, const Program*> parsed_includes_;  // path as resolved -> its AST
     ObjCache obj_cache_;
+    std::vector<TexturePtr> named_images_;
+    std::unordered_set<std::string> named_image_paths_;
     std::vector<Span> value_spans_;  // eval_block's scratch: the value spans of the item it admits
 };
 

@@ -4,12 +4,14 @@
 #include "lang/load.h"
 
 #include <chrono>
+#include <set>
 
 #include "lang/interpreter.h"
 #include "lang/lower.h"
 #include "lang/parser.h"
 #include "render/emitters.h"
 #include "render/memory_budget.h"
+#include "render/texture.h"
 
 namespace wsd::lang {
 
@@ -43,6 +45,28 @@ bool fits_in_memory(const render::SceneSpec& spec, const LoadedScene& loaded, ui
     return false;
 }
 
+// Every image file the scene names is read, as every mesh file is, also one that no object's
+// material uses: a missing or undecodable file is an error at the string that names it. Those the
+// build used were read (and reported) there.
+void check_unused_images(const std::vector<TexturePtr>& named, const render::SceneSpec& spec,
+                         render::ImageCache* images, Diagnostics& diags) {
+    std::set<std::string> used;
+    for (const render::MaterialSpec& m : spec.materials)
+        if (m.texture && m.texture->kind == render::TextureKind::Image) used.insert(m.texture->image_path);
+    for (const TexturePtr& t : named) {
+        if (diags.too_many()) return;
+        const std::string& image_path = t->spec.image_path;
+        if (used.count(image_path)) continue;
+        std::string error;
+        if (images ? images->get(image_path, error) : render::load_image(image_path, error)) continue;
+        std::vector<Span> chain;
+        for (const IncludeSite* s = t->chain.get(); s; s = s->parent.get()) chain.push_back(s->site);
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) diags.push_include(*it);
+        diags.error(t->span, error.empty() ? "cannot read image '" + image_path + "'" : error);
+        for (size_t i = 0; i < chain.size(); ++i) diags.pop_include();
+    }
+}
+
 }  // namespace
 
 std::optional<LoadedScene> load_scene(const std::string& path, std::string text, SourceManager& sources,
@@ -53,6 +77,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
 
     LoweredScene lowered;
     bool camera_seen = false, aborted = false;
+    std::vector<TexturePtr> named_images;
     {
         // The AST and the interpreter (with everything they hold, such as packed vertex lists)
         // are released before the render scene is built, to keep peak memory down.
@@ -69,6 +94,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
             if (interpreter.cancelled()) return std::nullopt;
             camera_seen = interpreter.camera_seen();
             aborted = interpreter.aborted();
+            named_images = interpreter.named_images();
         }
         lowered = builder.finish();
     }
@@ -96,6 +122,8 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
         if (!errors.empty()) report_spec_errors(errors, lowered, sources, diags);
         if (!loaded.scene && diags.error_count() == errors_before)
             diags.error(Span{file, 0, 0}, "the scene could not be built");
+        if (diags.error_count() > errors_before) return std::nullopt;
+        check_unused_images(named_images, lowered.spec, options.images, diags);
         if (diags.error_count() > errors_before) return std::nullopt;
     }
     if (!options.fragment && lowered.spec.settings.indirect_samples > 0) {

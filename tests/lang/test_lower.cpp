@@ -512,6 +512,27 @@ TEST_CASE("build errors map back to their spans", "[lower][spec-errors]") {
     CHECK(l->errors()[0].rfind("2:61: ", 0) == 0);
 }
 
+TEST_CASE("an image file that no object uses is read too: missing, it is an error at its string",
+          "[lower][spec-errors]") {
+    // Bound to a name, in a material no object uses, or never bound: each names the file.
+    for (const std::string& named : {std::string("let t = image \"no-such.png\"\n"),
+                                     std::string("let m = material { texture image \"no-such.png\" }\n"),
+                                     std::string("let s = sphere { center <0, 0, 0> radius 1\n"
+                                                 "  material { texture image \"no-such.png\" } }\n")}) {
+        auto l = load_text(std::string(kCamera) + named, false, true, "/nonexistent-dir/s.wsd");
+        INFO(named);
+        REQUIRE(l->errors().size() == 1);
+        CHECK(l->errors()[0].find("cannot open image '/nonexistent-dir/no-such.png'") != std::string::npos);
+        const Diagnostic& d = l->diags.all()[0];
+        const std::string_view text = std::string_view(l->sources.file(d.span.file).text);
+        CHECK(text.substr(d.span.begin, d.span.end - d.span.begin) == "\"no-such.png\"");
+    }
+    // Without a build (what `wsd check` of a fragment and the editor do) no file is read.
+    auto l = load_text(std::string(kCamera) + "let t = image \"no-such.png\"\n", false, false,
+                       "/nonexistent-dir/s.wsd");
+    CHECK(l->errors().empty());
+}
+
 TEST_CASE("SpecErrors find faces given as a general list", "[lower][spec-errors]") {
     auto e = evaluate_text(
         std::string(kCamera) +
