@@ -165,6 +165,8 @@ void Server::notification(const std::string& method, const json& params) {
 json Server::request(const std::string& method, const json& params) {
     if (shut_down_) throw RpcError{kInvalidRequest, "the server is shut down"};
     if (method == "initialize") {
+        // It may be sent once only.
+        if (initialized_) throw RpcError{kInvalidRequest, "the server is already initialized"};
         const json* encodings = nullptr;
         if (params.is_object() && params.contains("capabilities")) {
             const json& caps = params["capabilities"];

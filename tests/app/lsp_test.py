@@ -59,6 +59,8 @@ with tempfile.TemporaryDirectory() as tmp:
     check(caps.get("positionEncoding") == "utf-16", "initialize: utf-16 positions", r)
     check(caps.get("textDocumentSync", {}).get("change") == 1 and caps.get("hoverProvider"),
           "initialize: full sync and hover", caps)
+    r = c.request("initialize", {"processId": None, "capabilities": {"general": {"positionEncodings": ["utf-32"]}}})
+    check(r.get("error", {}).get("code") == -32600, "initialize may be sent once only", r)
 
     # An error, with its range: the value -1 of radius.
     c.notify("textDocument/didOpen",
