@@ -28,9 +28,17 @@ bool ends_with(const std::string& s, std::string_view tail) {
     return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+// A line or character: an LSP uinteger (0 to 2^31 - 1), not a negative or fractional number
+// (which a plain conversion would wrap or truncate to another position).
+uint32_t coordinate(const json& value) {
+    if (!value.is_number_unsigned() || value.get<uint64_t>() > 0x7FFFFFFFu)
+        throw RpcError{kInvalidParams, "a position's line and character are integers from 0 to 2147483647"};
+    return value.get<uint32_t>();
+}
+
 Position position_of(const json& params) {
     const json& p = params.at("position");
-    return {p.at("line").get<uint32_t>(), p.at("character").get<uint32_t>()};
+    return {coordinate(p.at("line")), coordinate(p.at("character"))};
 }
 
 json capabilities(Encoding enc) {

@@ -166,6 +166,10 @@ with tempfile.TemporaryDirectory() as tmp:
     c.send({"jsonrpc": "2.0", "id": 901, "method": "textDocument/hover", "params": {"position": 3}})
     r = c.wait_response(901)
     check(r.get("error", {}).get("code") == -32602, "wrong params", r)
+    # A position outside LSP's uinteger range is invalid params, not wrapped or truncated to another one.
+    for bad in ({"line": -1, "character": 0}, {"line": 0, "character": 1.5}, {"line": 4294967296, "character": 0}):
+        r = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": bad})
+        check(r.get("error", {}).get("code") == -32602, "an invalid position %s" % bad, r)
     body = b'{"jsonrpc": "2.0", "id": 902, "method": '
     c.write_raw(b"Content-Length: %d\r\n\r\n" % len(body) + body)
     r = c.read()
