@@ -141,7 +141,8 @@ const ParsedFile& Document::syntax() {
     return *parsed;
 }
 
-json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text) {
+json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text,
+                 const std::atomic<bool>* cancel) {
     SourceManager sources;
     Diagnostics diags;
     ParamTable params;
@@ -149,6 +150,7 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text)
     options.fragment = doc.fragment;
     options.build = !doc.fragment;
     options.params = &params;
+    options.cancel = cancel;
     options.read_include = [&](const std::string& path, std::string& text, std::string& reason) {
         if (std::optional<std::string> t = open_text(path)) {
             text = std::move(*t);

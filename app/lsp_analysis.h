@@ -3,6 +3,7 @@
 // LSP JSON values.
 #pragma once
 
+#include <atomic>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -29,9 +30,13 @@ nlohmann::json range_json(const LineIndex& index, uint32_t begin, uint32_t end, 
 // Every diagnostic `wsd check` gives for the document's text; those in included files are shown at
 // the `include` line of the document, with the chain of includes in the message.
 // Included files are an open document's unsaved text (`open_text`), else read from disk.
-nlohmann::json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text);
+// `cancel` turning true stops the check early; what it returns then is to be dropped.
+nlohmann::json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text,
+                           const std::atomic<bool>* cancel = nullptr);
 
-nlohmann::json hover(Document& doc, Position at, Encoding enc, const FileReader& reader);
+// `cancel` turning true stops evaluating the scene for a name's type (the type is left out).
+nlohmann::json hover(Document& doc, Position at, Encoding enc, const FileReader& reader,
+                     const std::atomic<bool>* cancel = nullptr);
 nlohmann::json completion(Document& doc, Position at, Encoding enc, const FileReader& reader);
 nlohmann::json definition(Document& doc, Position at, Encoding enc, const FileReader& reader);
 nlohmann::json document_symbols(Document& doc, Encoding enc);

@@ -103,9 +103,11 @@ std::string syntax_type(const Expr& e) {
     return "";
 }
 
-// The types of the scene's top-level names, from running it (without lowering's build).
-std::map<std::string, std::string> evaluate_top_level(const Document& doc, Workspace& ws,
-                                                      const FileReader& reader) {
+// The types of the scene's top-level names, from running it (without lowering's build); none when
+// `cancel` stopped the run.
+std::optional<std::map<std::string, std::string>> evaluate_top_level(const Document& doc, Workspace& ws,
+                                                                     const FileReader& reader,
+                                                                     const std::atomic<bool>* cancel) {
     std::map<std::string, std::string> out;
     SourceManager sources;
     Diagnostics diags;
@@ -122,7 +124,9 @@ std::map<std::string, std::string> evaluate_top_level(const Document& doc, Works
         return t.has_value();
     };
     interpreter.set_file_reader(&read);
+    interpreter.set_cancel(cancel);
     interpreter.run(program);
+    if (interpreter.cancelled()) return std::nullopt;
     for (const Definition& d : ws.visible_at(UINT32_MAX))
         if (d.top_level)
             if (const std::optional<Value> v = interpreter.lookup(d.name))
@@ -130,7 +134,8 @@ std::map<std::string, std::string> evaluate_top_level(const Document& doc, Works
     return out;
 }
 
-std::string name_help(Document& doc, Workspace& ws, const Definition& d, const FileReader& reader) {
+std::string name_help(Document& doc, Workspace& ws, const Definition& d, const FileReader& reader,
+                      const std::atomic<bool>* cancel) {
     std::string out = "```wsd\n";
     const FnStmt* fn = d.kind == Definition::Kind::Fn ? &d.stmt->as<FnStmt>() : nullptr;
     std::string type;
@@ -147,10 +152,13 @@ std::string name_help(Document& doc, Workspace& ws, const Definition& d, const F
                std::string(d.name);
         if (d.top_level) {
             if (!doc.top_level_types)
-                doc.top_level_types =
-                    std::make_shared<std::map<std::string, std::string>>(evaluate_top_level(doc, ws, reader));
-            auto it = doc.top_level_types->find(std::string(d.name));
-            if (it != doc.top_level_types->end()) type = it->second;
+                if (auto types = evaluate_top_level(doc, ws, reader, cancel))
+                    doc.top_level_types =
+                        std::make_shared<std::map<std::string, std::string>>(std::move(*types));
+            if (doc.top_level_types) {
+                auto it = doc.top_level_types->find(std::string(d.name));
+                if (it != doc.top_level_types->end()) type = it->second;
+            }
         }
         if (type.empty() && d.kind == Definition::Kind::Let) type = syntax_type(*d.stmt->as<LetStmt>().value);
         if (type.empty() && d.kind == Definition::Kind::Loop)
@@ -179,7 +187,8 @@ bool word_char(char c) {
 
 }  // namespace
 
-json hover(Document& doc, Position at, Encoding enc, const FileReader& reader) {
+json hover(Document& doc, Position at, Encoding enc, const FileReader& reader,
+           const std::atomic<bool>* cancel) {
     const ParsedFile& file = doc.syntax();
     const LineIndex index(doc.text);
     const uint32_t offset = index.offset(at, enc);
@@ -194,16 +203,16 @@ json hover(Document& doc, Position at, Encoding enc, const FileReader& reader) {
     if (c.defining) {
         for (const Definition& d : ws.visible_at(c.defining->span.end + 1))
             if (d.stmt == c.defining)
-                return hover_json(name_help(doc, ws, d, reader), index, d.name_span, enc);
+                return hover_json(name_help(doc, ws, d, reader, cancel), index, d.name_span, enc);
         Workspace inner(doc.parsed, reader);
         for (const Definition& d : inner.visible_at(offset))
             if (d.stmt == c.defining)
-                return hover_json(name_help(doc, ws, d, reader), index, d.name_span, enc);
+                return hover_json(name_help(doc, ws, d, reader, cancel), index, d.name_span, enc);
         return nullptr;
     }
     if (!c.name.empty())
         if (const std::optional<Definition> d = ws.resolve(c.name, offset))
-            return hover_json(name_help(doc, ws, *d, reader), index, c.name_span, enc);
+            return hover_json(name_help(doc, ws, *d, reader, cancel), index, c.name_span, enc);
     if (c.include) {
         const std::string path = ws.include_path(file, *c.include);
         return hover_json("Includes `" + path + "`" + (ws.included(file, *c.include) ? "" : " (not found)"),

@@ -3,9 +3,13 @@
 // thread, as `wsd check` runs scenes.
 #include "app/lsp_server.h"
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
+#include <thread>
 
 #include "lang/large_stack.h"
 
@@ -39,6 +43,31 @@ uint32_t coordinate(const json& value) {
 Position position_of(const json& params) {
     const json& p = params.at("position");
     return {coordinate(p.at("line")), coordinate(p.at("character"))};
+}
+
+// Runs `work` while another thread watches the input: `cancel` turns true as soon as a message
+// (or the end of input) arrives, so that a long evaluation gives way to it, or once `limit` has
+// passed.
+void watching_input(const Reader& reader, std::atomic<bool>& cancel, const std::function<void()>& work,
+                    std::chrono::steady_clock::duration limit = std::chrono::steady_clock::duration::max()) {
+    std::atomic<bool> done{false};
+    const auto start = std::chrono::steady_clock::now();
+    std::thread watcher([&] {
+        while (!done.load())
+            if (reader.wait_input(20) || std::chrono::steady_clock::now() - start > limit) {
+                cancel.store(true);
+                return;
+            }
+    });
+    struct Join {
+        std::atomic<bool>& done;
+        std::thread& watcher;
+        ~Join() {
+            done.store(true);
+            watcher.join();
+        }
+    } join{done, watcher};
+    work();
 }
 
 json capabilities(Encoding enc) {
@@ -87,26 +116,36 @@ Document& Server::document(const json& params) {
     return it->second;
 }
 
-void Server::publish(const std::string& uri) {
+bool Server::publish(const std::string& uri) {
     auto it = documents_.find(uri);
     json diags = json::array();
     if (it != documents_.end()) {
         const Document& doc = it->second;
         const Encoding enc = encoding_;
         const FileReader open_text = [this](const std::string& path) { return open_document_text(path); };
-        lang::run_on_large_stack([&] { diags = diagnostics(doc, enc, open_text); });
+        // A check that takes long (a scene running to the language's limits) gives way to the
+        // next message, and is done again once the input is drained.
+        std::atomic<bool> cancel{false};
+        watching_input(reader_, cancel, [&] {
+            lang::run_on_large_stack([&] { diags = diagnostics(doc, enc, open_text, &cancel); });
+        });
+        if (cancel.load()) return false;
     }
     json params = {{"uri", uri}, {"diagnostics", std::move(diags)}};
     if (it != documents_.end()) params["version"] = it->second.version;
     send({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", std::move(params)}});
+    return true;
 }
 
 void Server::publish_pending() {
-    while (!pending_.empty()) {
+    while (!pending_.empty() && !reader_.input_pending()) {
         const std::string uri = *pending_.begin();
         pending_.erase(pending_.begin());
         try {
-            publish(uri);
+            if (!publish(uri)) {
+                pending_.insert(uri);  // stopped for a message: checked again after it
+                return;
+            }
         } catch (const std::exception&) {
             // Out of memory or the like on one scene: the server goes on.
         }
@@ -204,8 +243,20 @@ json Server::request(const std::string& method, const json& params) {
         lang::run_on_large_stack([&] { result = answer(doc, enc); });
         return result;
     };
-    if (method == "textDocument/hover")
-        return run([&](Document& d, Encoding e) { return hover(d, position_of(params), e, reader); });
+    if (method == "textDocument/hover") {
+        // Evaluating the scene for a name's type gives way to the next message and stops after
+        // two seconds (the type is left out then).
+        std::atomic<bool> cancel{false};
+        watching_input(
+            reader_, cancel,
+            [&] {
+                run([&](Document& d, Encoding e) {
+                    return hover(d, position_of(params), e, reader, &cancel);
+                });
+            },
+            std::chrono::seconds(2));
+        return result;
+    }
     if (method == "textDocument/completion")
         return run([&](Document& d, Encoding e) { return completion(d, position_of(params), e, reader); });
     if (method == "textDocument/definition")

@@ -24,7 +24,7 @@ private:
     nlohmann::json request(const std::string& method, const nlohmann::json& params);
     void notification(const std::string& method, const nlohmann::json& params);
     void changed(const std::string& uri);  // its diagnostics, and those of documents naming it, are due
-    void publish(const std::string& uri);
+    bool publish(const std::string& uri);  // false when it gave way to input (still due)
     void publish_pending();
     void send(const nlohmann::json& message);
     void reply_error(const nlohmann::json& id, int code, const std::string& message);

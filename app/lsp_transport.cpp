@@ -72,6 +72,12 @@ bool Reader::input_pending() {
     return ::poll(&p, 1, 0) > 0;
 }
 
+bool Reader::wait_input(int timeout_ms) const {
+    if (pos_ < buffer_.size()) return true;
+    pollfd p{fd_, POLLIN, 0};
+    return ::poll(&p, 1, timeout_ms) > 0;
+}
+
 Reader::Result Reader::read(std::string& body) {
     std::string line;
     bool have_length = false, bad = false, in_header = false;

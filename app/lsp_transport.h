@@ -23,6 +23,9 @@ public:
     Result read(std::string& body);
     // Whether a byte is ready without blocking (in the buffer or on the descriptor).
     bool input_pending();
+    // Whether a byte (or the end of input) is ready within `timeout_ms`, without reading it. Safe
+    // on another thread while this one is not reading.
+    bool wait_input(int timeout_ms) const;
 
     static constexpr size_t max_body = size_t(1) << 30;
 

@@ -3,6 +3,7 @@
 import os
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from lsp_client import Client  # noqa: E402
@@ -187,6 +188,21 @@ with tempfile.TemporaryDirectory() as tmp:
                                         "contentChanges": [{"text": "fn f(n) { return f(n + 1) }\nlet x = f(0)\n"}]})
     d = c.wait_diagnostics(uri, 9)["diagnostics"]
     check(len(d) >= 1 and d[0]["severity"] == 1, "a runaway recursion is an error", d)
+
+    # A scene that runs for minutes within the language's limits gives way to messages: its check,
+    # and hover's evaluation of the scene, stop for them, and the server answers at once.
+    slow = ("camera { position <0, 0, -5>  look_at <0, 0, 0> }\nlet k = 3\n"
+            "for i in 0..100000000 { let a = [" + ", ".join(["i"] * 200) + "] }\n")
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 10},
+                                        "contentChanges": [{"text": slow}]})
+    time.sleep(0.5)  # the check is under way
+    for method, extra in (("textDocument/documentSymbol", {}),
+                          ("textDocument/hover", {"position": {"line": 1, "character": 4}})):
+        try:
+            r = c.request(method, dict({"textDocument": {"uri": uri}}, **extra), timeout=30)
+        except TimeoutError as e:
+            r = e
+        check(isinstance(r, dict) and r.get("result"), method + " answered during a long check", r)
 
     status = c.close()
     check(status == 0, "exit after shutdown: status 0", status)
