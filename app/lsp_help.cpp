@@ -185,6 +185,26 @@ bool word_char(char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
 
+// Whether `offset` is inside a comment or a string (also at the end of one left open, as a line
+// comment is up to its line's end).
+bool in_comment_or_string(std::string_view text, uint32_t offset) {
+    std::vector<Span> comments;
+    Lexer lexer(0, text, nullptr);
+    lexer.record_comments(&comments);
+    for (Token t = lexer.next(); t.kind != TokenKind::Eof && t.begin < offset; t = lexer.next())
+        if (t.kind == TokenKind::String) {
+            const bool closed = t.end - t.begin >= 2 && text[t.end - 1] == '"';
+            if (offset < t.end || (offset == t.end && !closed)) return true;
+        }
+    for (const Span& c : comments) {
+        if (c.begin >= offset) break;
+        const bool line = text[c.begin + 1] == '/';
+        const bool closed = !line && c.end - c.begin >= 4 && text.substr(c.end - 2, 2) == "*/";
+        if (offset < c.end || (offset == c.end && !closed)) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 json hover(Document& doc, Position at, Encoding enc, const FileReader& reader,
@@ -225,9 +245,10 @@ json completion(Document& doc, Position at, Encoding enc, const FileReader& read
     const ParsedFile& file = doc.syntax();
     const std::string& text = doc.text;
     const uint32_t offset = LineIndex(text).offset(at, enc);
+    json items = json::array();
+    if (in_comment_or_string(text, offset)) return items;  // prose and paths: nothing to offer
     const Context c = context_at(file, offset);
     Workspace ws(doc.parsed, reader);
-    json items = json::array();
     std::set<std::string> seen;
     auto add = [&](std::string_view label, int kind, const std::string& detail = {}) {
         if (!label.empty() && seen.insert(std::string(label)).second)

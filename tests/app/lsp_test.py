@@ -115,6 +115,14 @@ with tempfile.TemporaryDirectory() as tmp:
                       {"textDocument": {"uri": uri}, "position": position(commented, "ra }", delta=2)})
         labels = [x["label"] for x in (r.get("result") or [])]
         check("radius" in labels and "shiny" not in labels, "completion after a comment: " + before.strip(), labels)
+    # Inside a comment or a string there is nothing to complete.
+    prose = FIXED + '// the sh\nlet label = "the sh" /* the sh */\n'
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 6},
+                                        "contentChanges": [{"text": prose}]})
+    for at in (position(prose, "the sh", delta=6), position(prose, "the sh", nth=1, delta=6),
+               position(prose, "the sh", nth=2, delta=6)):
+        r = c.request("textDocument/completion", {"textDocument": {"uri": uri}, "position": at})
+        check(r.get("result") == [], "no completion in a comment or string at %s" % at, r)
     c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 6},
                                         "contentChanges": [{"text": edited}]})
     # At statement level: keywords and names.
