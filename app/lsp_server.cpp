@@ -40,9 +40,12 @@ uint32_t coordinate(const json& value) {
     return value.get<uint32_t>();
 }
 
-Position position_of(const json& params) {
-    const json& p = params.at("position");
+Position position_at(const json& p) {
     return {coordinate(p.at("line")), coordinate(p.at("character"))};
+}
+
+Position position_of(const json& params) {
+    return position_at(params.at("position"));
 }
 
 // Runs `work` while another thread watches the input: `cancel` turns true as soon as a message
@@ -187,8 +190,23 @@ void Server::notification(const std::string& method, const json& params) {
         Document& doc = document(params);
         const json& changes = params.at("contentChanges");
         if (!changes.is_array() || changes.empty()) return;
-        // Full sync: the last change holds the whole text.
-        doc.text = changes.back().at("text").get<std::string>();
+        // Full sync is what the server asks for: a change is the whole text. One with a range (a
+        // client that sends edits regardless) replaces that range, in order, as LSP defines it.
+        std::string text = doc.text;
+        for (const json& change : changes) {
+            const std::string& replacement = change.at("text").get_ref<const std::string&>();
+            if (!change.contains("range")) {
+                text = replacement;
+                continue;
+            }
+            const LineIndex index(text);
+            const json& range = change.at("range");
+            uint32_t begin = index.offset(position_at(range.at("start")), encoding_);
+            uint32_t end = index.offset(position_at(range.at("end")), encoding_);
+            if (end < begin) std::swap(begin, end);
+            text.replace(begin, end - begin, replacement);
+        }
+        doc.text = std::move(text);
         doc.version = params.at("textDocument").value("version", doc.version + 1);
         doc.parsed.reset();
         doc.top_level_types.reset();

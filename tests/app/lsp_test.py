@@ -230,6 +230,22 @@ with tempfile.TemporaryDirectory() as tmp:
               and d[0]["range"]["end"] == {"line": 0, "character": col + 4}, "columns in " + enc, d)
         check(c.close() == 0, "exit status after " + enc)
 
+    # A change with a range (sent although full sync is asked for) edits that range.
+    c = Client(WSD, cwd=tmp)
+    c.initialize()
+    e_uri = uri_of(os.path.join(tmp, "e.wsdi"))
+    before = 'let s = "😀"  let b = 1\n'
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": e_uri, "languageId": "wsd", "version": 1, "text": before}})
+    c.wait_diagnostics(e_uri, 1)
+    one = position(before, "1")
+    c.notify("textDocument/didChange", {"textDocument": {"uri": e_uri, "version": 2}, "contentChanges": [
+        {"range": {"start": one, "end": dict(one, character=one["character"] + 1)}, "text": "nope"}]})
+    d = c.wait_diagnostics(e_uri, 2)["diagnostics"]
+    check(len(d) == 1 and d[0]["message"] == "unknown name 'nope'"
+          and d[0]["range"] == {"start": one, "end": dict(one, character=one["character"] + 4)},
+          "a ranged change edits its range", d)
+    c.close()
+
     # An included file's unsaved text is what the including document is checked with.
     c = Client(WSD, cwd=tmp)
     c.initialize()
