@@ -3,7 +3,11 @@
 // thread, as `wsd check` runs scenes.
 #include "app/lsp_server.h"
 
+#include <poll.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -48,28 +52,47 @@ Position position_of(const json& params) {
     return position_at(params.at("position"));
 }
 
-// Runs `work` while another thread watches the input: `cancel` turns true as soon as a message
-// (or the end of input) arrives, so that a long evaluation gives way to it, or once `limit` has
-// passed.
-void watching_input(const Reader& reader, std::atomic<bool>& cancel, const std::function<void()>& work,
-                    std::chrono::steady_clock::duration limit = std::chrono::steady_clock::duration::max()) {
-    std::atomic<bool> done{false};
-    const auto start = std::chrono::steady_clock::now();
+// Runs `work` while another thread watches: `cancel` turns true once `limit` has passed, and with
+// `on_input` as soon as a message (or the end of input) arrives, so that a long evaluation gives
+// way to it.
+void watching(const Reader& reader, bool on_input, std::chrono::milliseconds limit, std::atomic<bool>& cancel,
+              const std::function<void()>& work) {
+    int wake[2];
+    if (::pipe(wake) != 0) return work();  // unwatched
+    const auto deadline = std::chrono::steady_clock::now() + limit;
     std::thread watcher([&] {
-        while (!done.load())
-            if (reader.wait_input(20) || std::chrono::steady_clock::now() - start > limit) {
+        for (;;) {
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                deadline - std::chrono::steady_clock::now());
+            const int ms =
+                left.count() <= 0 ? 0 : static_cast<int>(std::min<long long>(left.count(), 1 << 30));
+            bool input = false;
+            if (on_input) {
+                input = reader.wait_input(ms, wake[0]);
+            } else {
+                pollfd p{wake[0], POLLIN, 0};
+                ::poll(&p, 1, ms);
+            }
+            pollfd woken{wake[0], POLLIN, 0};
+            if (::poll(&woken, 1, 0) > 0) return;  // the work is done
+            if (input || std::chrono::steady_clock::now() >= deadline) {
                 cancel.store(true);
                 return;
             }
+        }
     });
     struct Join {
-        std::atomic<bool>& done;
+        int* wake;
         std::thread& watcher;
         ~Join() {
-            done.store(true);
+            const char byte = 0;
+            while (::write(wake[1], &byte, 1) < 0 && errno == EINTR) {
+            }
             watcher.join();
+            ::close(wake[0]);
+            ::close(wake[1]);
         }
-    } join{done, watcher};
+    } join{wake, watcher};
     work();
 }
 
@@ -129,7 +152,7 @@ bool Server::publish(const std::string& uri) {
         // A check that takes long (a scene running to the language's limits) gives way to the
         // next message, and is done again once the input is drained.
         std::atomic<bool> cancel{false};
-        watching_input(reader_, cancel, [&] {
+        watching(reader_, true, std::chrono::hours(24 * 365), cancel, [&] {
             lang::run_on_large_stack([&] { diags = diagnostics(doc, enc, open_text, &cancel); });
         });
         if (cancel.load()) return false;
@@ -262,17 +285,11 @@ json Server::request(const std::string& method, const json& params) {
         return result;
     };
     if (method == "textDocument/hover") {
-        // Evaluating the scene for a name's type gives way to the next message and stops after
-        // two seconds (the type is left out then).
+        // Evaluating the scene for a name's type stops after two seconds (the type is left out then).
         std::atomic<bool> cancel{false};
-        watching_input(
-            reader_, cancel,
-            [&] {
-                run([&](Document& d, Encoding e) {
-                    return hover(d, position_of(params), e, reader, &cancel);
-                });
-            },
-            std::chrono::seconds(2));
+        watching(reader_, false, std::chrono::seconds(2), cancel, [&] {
+            run([&](Document& d, Encoding e) { return hover(d, position_of(params), e, reader, &cancel); });
+        });
         return result;
     }
     if (method == "textDocument/completion")

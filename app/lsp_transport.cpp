@@ -72,10 +72,10 @@ bool Reader::input_pending() {
     return ::poll(&p, 1, 0) > 0;
 }
 
-bool Reader::wait_input(int timeout_ms) const {
+bool Reader::wait_input(int timeout_ms, int wake_fd) const {
     if (pos_ < buffer_.size()) return true;
-    pollfd p{fd_, POLLIN, 0};
-    return ::poll(&p, 1, timeout_ms) > 0;
+    pollfd p[2] = {{fd_, POLLIN, 0}, {wake_fd, POLLIN, 0}};
+    return ::poll(p, wake_fd < 0 ? 1 : 2, timeout_ms) > 0 && p[0].revents != 0;
 }
 
 Reader::Result Reader::read(std::string& body) {

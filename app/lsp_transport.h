@@ -23,9 +23,10 @@ public:
     Result read(std::string& body);
     // Whether a byte is ready without blocking (in the buffer or on the descriptor).
     bool input_pending();
-    // Whether a byte (or the end of input) is ready within `timeout_ms`, without reading it. Safe
-    // on another thread while this one is not reading.
-    bool wait_input(int timeout_ms) const;
+    // Whether a byte (or the end of input) is ready within `timeout_ms` (-1: no limit), without
+    // reading it; false also once `wake_fd` (if not -1) is readable. Safe on another thread while
+    // this one is not reading.
+    bool wait_input(int timeout_ms, int wake_fd = -1) const;
 
     static constexpr size_t max_body = size_t(1) << 30;
 

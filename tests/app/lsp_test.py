@@ -1,5 +1,6 @@
 # `wsd lsp` driven by a scripted client over a pipe (usage: lsp_test.py WSD). Each check prints
 # what failed; the exit status is the number of failures (0: all passed).
+import json
 import os
 import sys
 import tempfile
@@ -90,6 +91,18 @@ with tempfile.TemporaryDirectory() as tmp:
     h = c.request("textDocument/hover", {"textDocument": {"uri": uri}, "position": position(FIXED, "R)")})
     text = h.get("result", {}).get("contents", {}).get("value", "") if h.get("result") else ""
     check("number" in text and "inc.wsdi:2:5" in text, "hover on a name from an include", h)
+    # A type known only by evaluating the scene, with the next request already sent (pipelined).
+    typed = FIXED + "let v = twice(R)\n"
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": typed}]})
+    hover_v = {"textDocument": {"uri": uri}, "position": position(typed, "v =")}
+    c.write_raw(b"".join(b"Content-Length: %d\r\n\r\n" % len(m) + m for m in (
+        json.dumps({"jsonrpc": "2.0", "id": 700, "method": "textDocument/hover", "params": hover_v}).encode(),
+        json.dumps({"jsonrpc": "2.0", "id": 701, "method": "textDocument/documentSymbol",
+                    "params": {"textDocument": {"uri": uri}}}).encode())))
+    h = c.wait_response(700)
+    check("Type: number" in json.dumps(h), "hover with the next request pipelined: the evaluated type", h)
+    c.wait_response(701)
+    c.notify("textDocument/didChange", {"textDocument": {"uri": uri, "version": 3}, "contentChanges": [{"text": FIXED}]})
 
     # Completion in a sphere: its properties, not the camera's.
     edited = FIXED.replace("material shiny }", "material shiny\n  ra }")
