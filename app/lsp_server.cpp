@@ -6,6 +6,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -142,7 +143,7 @@ Document& Server::document(const json& params) {
     return it->second;
 }
 
-bool Server::publish(const std::string& uri) {
+bool Server::publish(const std::string& uri, std::chrono::milliseconds limit) {
     auto it = documents_.find(uri);
     json diags = json::array();
     if (it != documents_.end()) {
@@ -152,7 +153,7 @@ bool Server::publish(const std::string& uri) {
         // A check that takes long (a scene running to the language's limits) gives way to the
         // next message, and is done again once the input is drained.
         std::atomic<bool> cancel{false};
-        watching(reader_, true, std::chrono::hours(24 * 365), cancel, [&] {
+        watching(reader_, true, limit, cancel, [&] {
             lang::run_on_large_stack([&] { diags = diagnostics(doc, enc, open_text, &cancel); });
         });
         if (cancel.load()) return false;
@@ -163,14 +164,27 @@ bool Server::publish(const std::string& uri) {
     return true;
 }
 
+void Server::due(const std::string& uri) {
+    if (std::find(pending_.begin(), pending_.end(), uri) == pending_.end()) pending_.push_back(uri);
+}
+
 void Server::publish_pending() {
     while (!pending_.empty() && !reader_.input_pending()) {
-        const std::string uri = *pending_.begin();
+        const std::string uri = pending_.front();
         pending_.erase(pending_.begin());
+        // While a document not yet found slow waits, a check gets a second; one that takes longer
+        // is slow, and waits behind the others (a slow document among slow ones runs to its end).
+        const bool others_wait = std::any_of(pending_.begin(), pending_.end(),
+                                             [&](const std::string& other) { return !slow_.count(other); });
+        const std::chrono::milliseconds limit =
+            others_wait ? std::chrono::milliseconds(1000) : std::chrono::hours(24 * 365);
         try {
-            if (!publish(uri)) {
-                pending_.insert(uri);  // stopped for a message: checked again after it
-                return;
+            if (publish(uri, limit)) {
+                slow_.erase(uri);
+            } else {
+                // Stopped for a message (checked again after it) or for the documents waiting.
+                if (!reader_.input_pending()) slow_.insert(uri);
+                pending_.push_back(uri);
             }
         } catch (const std::exception&) {
             // Out of memory or the like on one scene: the server goes on.
@@ -179,7 +193,8 @@ void Server::publish_pending() {
 }
 
 void Server::changed(const std::string& uri) {
-    pending_.insert(uri);
+    due(uri);
+    slow_.erase(uri);  // its new text may be quick
     // Open documents that may include this one are checked again too (those that name its file).
     auto it = documents_.find(uri);
     if (it == documents_.end()) return;
@@ -187,7 +202,7 @@ void Server::changed(const std::string& uri) {
     if (name.empty()) return;
     for (auto& [other, doc] : documents_) {
         if (other == uri || doc.text.find(name) == std::string::npos) continue;
-        pending_.insert(other);
+        due(other);
         doc.top_level_types.reset();  // the evaluated types may come from the changed file
     }
 }
@@ -241,7 +256,8 @@ void Server::notification(const std::string& method, const json& params) {
         // Documents that include it read the file on disk from now on: they are checked again.
         changed(uri);
         documents_.erase(uri);
-        pending_.erase(uri);
+        pending_.erase(std::remove(pending_.begin(), pending_.end(), uri), pending_.end());
+        slow_.erase(uri);
         // Clear what was shown for it.
         send({{"jsonrpc", "2.0"},
               {"method", "textDocument/publishDiagnostics"},

@@ -3,10 +3,12 @@
 // is dropped); nothing a client sends ends it but `exit` or the end of its input.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "app/lsp_analysis.h"
 #include "app/lsp_transport.h"
@@ -24,7 +26,9 @@ private:
     nlohmann::json request(const std::string& method, const nlohmann::json& params);
     void notification(const std::string& method, const nlohmann::json& params);
     void changed(const std::string& uri);  // its diagnostics, and those of documents naming it, are due
-    bool publish(const std::string& uri);  // false when it gave way to input (still due)
+    // False when the check stopped early, for input or at `limit` (the document is still due).
+    bool publish(const std::string& uri, std::chrono::milliseconds limit);
+    void due(const std::string& uri);  // its diagnostics are due (once in the queue)
     void publish_pending();
     void send(const nlohmann::json& message);
     void reply_error(const nlohmann::json& id, int code, const std::string& message);
@@ -37,7 +41,8 @@ private:
     Encoding encoding_ = Encoding::Utf16;
     bool initialized_ = false, shut_down_ = false, exiting_ = false;
     std::map<std::string, Document> documents_;  // by URI
-    std::set<std::string> pending_;              // URIs whose diagnostics are due
+    std::vector<std::string> pending_;           // URIs whose diagnostics are due, oldest first
+    std::set<std::string> slow_;                 // those whose check was stopped at its time limit
 };
 
 }  // namespace wsd::app::lsp

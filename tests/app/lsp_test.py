@@ -224,6 +224,16 @@ with tempfile.TemporaryDirectory() as tmp:
         except TimeoutError as e:
             r = e
         check(isinstance(r, dict) and r.get("result"), method + " answered during a long check", r)
+    # Nor does it hold up another document's diagnostics (queued after it, and its URI sorting after).
+    quick_uri = uri_of(os.path.join(tmp, "quick.wsd"))
+    c.notify("textDocument/didOpen", {"textDocument": {"uri": quick_uri, "languageId": "wsd", "version": 1,
+                                                       "text": "let q = nope\n"}})
+    try:
+        d = c.wait_diagnostics(quick_uri, 1, timeout=30)["diagnostics"]
+    except TimeoutError as e:
+        d = e
+    check(isinstance(d, list) and any("nope" in x["message"] for x in d),
+          "another document's diagnostics during a long check", d)
 
     status = c.close()
     check(status == 0, "exit after shutdown: status 0", status)
