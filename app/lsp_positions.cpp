@@ -33,6 +33,29 @@ LineIndex::LineIndex(std::string_view text) : text_(text) {
     }
 }
 
+void LineIndex::mark_long_lines(uint32_t line) const {
+    if (marked_ || line_end(line) - starts_[line] <= kMarkEvery) return;
+    marked_ = true;
+    for (uint32_t l = 0; l < starts_.size(); ++l) {
+        const uint32_t end = line_end(l);
+        uint32_t utf16 = 0, utf32 = 0, next_mark = starts_[l] + kMarkEvery;
+        for (uint32_t at = starts_[l]; at < end;) {
+            if (at >= next_mark) {
+                marks_.push_back({at, utf16, utf32});
+                next_mark = at + kMarkEvery;
+            }
+            if (static_cast<unsigned char>(text_[at]) < 0x80) {
+                ++utf16, ++utf32, ++at;
+                continue;
+            }
+            const lang::Utf8Step step = lang::decode_utf8(text_, at);
+            utf16 += units(step, Encoding::Utf16);
+            utf32 += units(step, Encoding::Utf32);
+            at += step.length;
+        }
+    }
+}
+
 uint32_t LineIndex::line_end(uint32_t line) const {
     uint32_t end = line + 1 < starts_.size() ? starts_[line + 1] : static_cast<uint32_t>(text_.size());
     while (end > starts_[line] && (text_[end - 1] == '\n' || text_[end - 1] == '\r')) --end;
@@ -41,9 +64,22 @@ uint32_t LineIndex::line_end(uint32_t line) const {
 
 uint32_t LineIndex::offset(Position p, Encoding e) const {
     if (p.line >= starts_.size()) return static_cast<uint32_t>(text_.size());
+    mark_long_lines(p.line);
     uint32_t at = starts_[p.line];
     const uint32_t end = line_end(p.line);
     uint32_t counted = 0;
+    // Start from the line's last mark that is not past the position.
+    const auto first = std::lower_bound(marks_.begin(), marks_.end(), at,
+                                        [](const Mark& m, uint32_t o) { return m.offset < o; });
+    const auto last =
+        std::lower_bound(first, marks_.end(), end, [](const Mark& m, uint32_t o) { return m.offset < o; });
+    const auto after = std::upper_bound(first, last, p.character, [&](uint32_t c, const Mark& m) {
+        return c < (e == Encoding::Utf16 ? m.utf16 : m.utf32);
+    });
+    if (after != first) {
+        at = std::prev(after)->offset;
+        counted = e == Encoding::Utf16 ? std::prev(after)->utf16 : std::prev(after)->utf32;
+    }
     while (at < end) {
         const lang::Utf8Step step = lang::decode_utf8(text_, at);
         const uint32_t n = units(step, e);
@@ -58,9 +94,18 @@ Position LineIndex::position(uint32_t offset, Encoding e) const {
     offset = std::min(offset, static_cast<uint32_t>(text_.size()));
     const auto it = std::upper_bound(starts_.begin(), starts_.end(), offset);
     const uint32_t line = static_cast<uint32_t>(it - starts_.begin()) - 1;
+    mark_long_lines(line);
     Position p{line, 0};
     const uint32_t end = std::min(offset, line_end(line));
-    for (uint32_t at = starts_[line]; at < end;) {
+    uint32_t at = starts_[line];
+    // Start from the line's last mark not past the offset.
+    auto mark = std::upper_bound(marks_.begin(), marks_.end(), end,
+                                 [](uint32_t o, const Mark& m) { return o < m.offset; });
+    if (mark != marks_.begin() && std::prev(mark)->offset >= at) {
+        at = std::prev(mark)->offset;
+        p.character = e == Encoding::Utf16 ? std::prev(mark)->utf16 : std::prev(mark)->utf32;
+    }
+    for (; at < end;) {
         const lang::Utf8Step step = lang::decode_utf8(text_, at);
         p.character += units(step, e);
         at += step.length;

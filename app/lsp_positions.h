@@ -29,8 +29,18 @@ public:
 
 private:
     uint32_t line_end(uint32_t line) const;  // the byte offset of its line break
+    // A character boundary with the units before it on its line: one every 256 bytes or so on
+    // long lines, so that a conversion scans a few hundred bytes, not all of a long line (a scene
+    // on one line). Made when a position on a long line is first converted.
+    struct Mark {
+        uint32_t offset, utf16, utf32;
+    };
+    static constexpr uint32_t kMarkEvery = 256;
+    void mark_long_lines(uint32_t line) const;  // the marks, if `line` is long and they are not made
     std::string_view text_;
     std::vector<uint32_t> starts_;
+    mutable std::vector<Mark> marks_;
+    mutable bool marked_ = false;
 };
 
 // `file:///a/b%20c.wsd` → `/a/b c.wsd`; any other URI (`untitled:1`) is returned as it is.
