@@ -2,6 +2,8 @@
 // completion are in lsp_help.cpp).
 #include "app/lsp_analysis.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 
@@ -127,6 +129,15 @@ void symbols_of(StmtList list, std::string_view text, const LineIndex& index, En
 
 }  // namespace
 
+bool read_disk_include(const std::string& path, std::string& text, std::string& reason) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+        reason = "it is not a regular file";
+        return false;
+    }
+    return lang::read_include_file(path, text, reason);
+}
+
 json position_json(Position p) {
     return {{"line", p.line}, {"character", p.character}};
 }
@@ -156,7 +167,7 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text,
             text = std::move(*t);
             return true;
         }
-        return lang::read_include_file(path, text, reason);  // as the interpreter reads files
+        return read_disk_include(path, text, reason);
     };
     json out = json::array();
     const LineIndex index(doc.text);

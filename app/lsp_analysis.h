@@ -24,6 +24,10 @@ struct Document {
     const ParsedFile& syntax();
 };
 
+// An included file read from disk: a regular file only (a FIFO such as /dev/stdin would block the
+// server or read its own input), else as the interpreter reads it; false with the reason.
+bool read_disk_include(const std::string& path, std::string& text, std::string& reason);
+
 nlohmann::json position_json(Position p);
 nlohmann::json range_json(const LineIndex& index, uint32_t begin, uint32_t end, Encoding enc);
 

@@ -11,9 +11,7 @@
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <thread>
 
 #include "lang/large_stack.h"
@@ -117,14 +115,12 @@ std::optional<std::string> Server::open_document_text(const std::string& path) c
 }
 
 std::optional<std::string> Server::read_file(const std::string& path) const {
-    // An open document's unsaved text, else the file on disk.
+    // An open document's unsaved text, else the file on disk (a regular file only: not /dev/zero
+    // or the server's own stdin).
     if (std::optional<std::string> text = open_document_text(path)) return text;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) return std::nullopt;
-    return text.str();
+    std::string text, reason;
+    if (!read_disk_include(path, text, reason)) return std::nullopt;
+    return text;
 }
 
 void Server::send(const json& message) {

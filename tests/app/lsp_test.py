@@ -295,6 +295,26 @@ with tempfile.TemporaryDirectory() as tmp:
             check(False, "symbols along a long line in " + enc, e)
         c.close()
 
+    # An include of a device or a pipe is refused, not read: /dev/zero never ends, and /dev/stdin
+    # is the server's own input.
+    for device in ("/dev/zero", "/dev/stdin"):
+        c = Client(WSD, cwd=tmp)
+        c.initialize()
+        z_uri = uri_of(os.path.join(tmp, "z.wsdi"))
+        c.notify("textDocument/didOpen", {"textDocument": {"uri": z_uri, "languageId": "wsd", "version": 1,
+                                                           "text": 'include "%s"\nlet y = 1\n' % device}})
+        try:
+            d = c.wait_diagnostics(z_uri, 1, timeout=20)["diagnostics"]
+            check(len(d) == 1 and "not a regular file" in d[0]["message"], "include " + device + ": refused", d)
+            for method in ("textDocument/completion", "textDocument/hover"):
+                r = c.request(method, {"textDocument": {"uri": z_uri}, "position": {"line": 1, "character": 4}},
+                              timeout=20)
+                check("result" in r, "include " + device + ": " + method + " answered", r)
+            check(c.close() == 0, "include " + device + ": exit status 0")
+        except (TimeoutError, EOFError) as e:
+            check(False, "include " + device + " answered", e)
+            c.proc.kill()
+
     # An included file's unsaved text is what the including document is checked with.
     c = Client(WSD, cwd=tmp)
     c.initialize()
