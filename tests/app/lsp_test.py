@@ -315,6 +315,24 @@ with tempfile.TemporaryDirectory() as tmp:
             check(False, "include " + device + " answered", e)
             c.proc.kill()
 
+    # Nor is a mesh file naming the server's own input or output: the scene reads /dev/null there.
+    for device in ("/dev/stdin", "/dev/stdout"):
+        c = Client(WSD, cwd=tmp)
+        c.initialize()
+        m_uri = uri_of(os.path.join(tmp, "mesh.wsd"))
+        c.notify("textDocument/didOpen", {"textDocument": {"uri": m_uri, "languageId": "wsd", "version": 1, "text":
+                 'camera { position <0, 0, -5>  look_at <0, 0, 0> }\nmesh { file "%s"  material { color <1, 1, 1> } }\n'
+                 % device}})
+        try:
+            d = c.wait_diagnostics(m_uri, 1, timeout=20)["diagnostics"]
+            check(any("not a regular file" in x["message"] for x in d), "mesh " + device + ": refused", d)
+            r = c.request("textDocument/documentSymbol", {"textDocument": {"uri": m_uri}}, timeout=20)
+            check(isinstance(r.get("result"), list), "mesh " + device + ": still answering", r)
+            check(c.close() == 0, "mesh " + device + ": exit status 0")
+        except (TimeoutError, EOFError, ValueError) as e:
+            check(False, "mesh " + device + " answered", e)
+            c.proc.kill()
+
     # An included file's unsaved text is what the including document is checked with.
     c = Client(WSD, cwd=tmp)
     c.initialize()
