@@ -3,6 +3,7 @@
 // goes through svg_plot with one series per knob in the order the knobs were swept.
 #include "app/bench_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -42,14 +43,17 @@ void mark_pareto(std::vector<BenchRow>& rows) {
 
 std::string bench_table(const std::vector<BenchRow>& rows) {
     std::ostringstream out;
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "%-16s %6s %10s %10s %12s %12s %10s %10s %9s %8s %s\n", "knob", "value",
-                  "wall s", "cpu s", "ray queries", "shadow rays", "RMSE", "est. RMSE", "PSNR dB", "SSIM",
-                  "pareto");
+    // The knob column is as wide as its longest name (exact_area_lights is longer than "knob" pads to).
+    int knob = 16;
+    for (const BenchRow& r : rows) knob = std::max(knob, static_cast<int>(r.knob.size()));
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "%-*s %6s %10s %10s %12s %12s %10s %10s %9s %8s %s\n", knob, "knob",
+                  "value", "wall s", "cpu s", "ray queries", "shadow rays", "RMSE", "est. RMSE", "PSNR dB",
+                  "SSIM", "pareto");
     out << buf;
     for (const BenchRow& r : rows) {
-        std::snprintf(buf, sizeof buf, "%-16s %6s %10.4f %10.4f %12llu %12llu %10.6f %10s %9s %8.5f %s\n",
-                      r.knob.c_str(), r.value.c_str(), r.wall_seconds, r.cpu_seconds,
+        std::snprintf(buf, sizeof buf, "%-*s %6s %10.4f %10.4f %12llu %12llu %10.6f %10s %9s %8.5f %s\n",
+                      knob, r.knob.c_str(), r.value.c_str(), r.wall_seconds, r.cpu_seconds,
                       static_cast<unsigned long long>(r.stats.ray_queries()),
                       static_cast<unsigned long long>(r.stats.shadow_rays), r.error.rmse,
                       estimate(r, "%.6f").c_str(), fmt("%.2f", r.error.psnr).c_str(), r.error.ssim,

@@ -194,6 +194,10 @@ std::vector<Setting> sweep(const SceneFacts& facts, const SceneOverrides& base, 
 int prepare_directory(const std::string& dir, std::string& error) {
     std::error_code ec;
     if (std::filesystem::is_directory(dir, ec)) return exit_code::ok;
+    if (std::filesystem::exists(std::filesystem::symlink_status(dir, ec))) {
+        error = "cannot use '" + dir + "' as the output directory: it exists and is not a directory";
+        return exit_code::io;
+    }
     // The directory itself is created; a missing parent is not (wsd-cli.md, exit status 3).
     if (!std::filesystem::create_directory(dir, ec)) {
         error = "cannot create output directory '" + dir +

@@ -71,7 +71,24 @@ TEST_CASE("bench --quick sweeps every knob and writes csv, md and svg", "[bench]
     const RunResult r = run_wsd(dir, "bench b.wsd --quick -o out --reference-light-samples 4 --threads 2");
     REQUIRE(r.status == 0);
     CHECK(r.out.find("supersamples") != std::string::npos);  // the table
-    CHECK_FALSE(r.err.empty());                              // progress
+    {
+        // Every row's columns end where the header's do, the longest knob name included.
+        std::istringstream table(r.out);
+        std::string header, line;
+        REQUIRE(std::getline(table, header));
+        const size_t ssim_end = header.find("SSIM") + 4;
+        bool longest = false;
+        while (std::getline(table, line) && !line.empty()) {
+            longest = longest || line.rfind("exact_area_lights", 0) == 0;
+            if (line.ends_with(" *"))
+                line.resize(line.size() - 2);
+            else if (line.ends_with(' '))
+                line.pop_back();
+            CHECK(line.size() == ssim_end);
+        }
+        CHECK(longest);
+    }
+    CHECK_FALSE(r.err.empty());  // progress
 
     const auto rows = parse_csv(read_file(dir / "out/bench.csv"));
     REQUIRE(rows.size() > 1);
@@ -147,5 +164,10 @@ TEST_CASE("bench failures: unreadable scene 3, scene error 1, missing parent dir
     CHECK(run_wsd(dir, "bench nothing.wsd --quick").status == 3);
     CHECK(run_wsd(dir, "bench bad.wsd --quick").status == 1);
     CHECK(run_wsd(dir, "bench s.wsd --quick -o no/such/dir").status == 3);
+    write_file(dir / "file", "x");
+    const RunResult onto_file = run_wsd(dir, "bench s.wsd --quick -o file");
+    CHECK(onto_file.status == 3);
+    CHECK(onto_file.err.find("'file' as the output directory: it exists and is not a directory") !=
+          std::string::npos);
     CHECK(run_wsd(dir, "bench s.wsd --quick --repeat 0").status == 2);
 }
