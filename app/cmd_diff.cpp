@@ -28,7 +28,8 @@ int read_display(const std::string& path, DisplayImage& image) {
         std::count_if(film.rgb.begin(), film.rgb.end(), [](float v) { return !std::isfinite(v); });
     if (nonfinite > 0)
         std::cerr << "wsd: note: '" << path << "' holds " << nonfinite
-                  << " values that are not finite: NaN and -inf are compared as black, +inf as white\n";
+                  << (nonfinite == 1 ? " value that is" : " values that are")
+                  << " not finite: NaN and -inf are compared as black, +inf as white\n";
     image = to_display(film, eight_bit);
     return exit_code::ok;
 }

@@ -2,6 +2,7 @@
 // renders: identical images, a known constant offset, the heat map, and every failure status.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "app_test_util.h"
 
@@ -111,4 +112,12 @@ TEST_CASE("diff notes the values of an image that are not finite, and how it com
     CHECK(r.err.find("'nan.pfm' holds 3 values that are not finite: NaN and -inf are compared as black") !=
           std::string::npos);
     CHECK(r.err.find("zero.pfm") == std::string::npos);
+
+    // One such value is said in the singular.
+    const float one[6] = {0, std::numeric_limits<float>::infinity(), 0, 0, 0, 0};
+    write_file(dir / "inf.pfm",
+               "PF\n2 1\n-1.0\n" + std::string(reinterpret_cast<const char*>(one), sizeof one));
+    const RunResult single = run_wsd(dir, "diff inf.pfm zero.pfm");
+    CHECK(single.status == 0);
+    CHECK(single.err.find("'inf.pfm' holds 1 value that is not finite:") != std::string::npos);
 }
