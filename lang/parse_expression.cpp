@@ -239,7 +239,7 @@ Expr* Parser::parse_primary() {
     }
 }
 
-// IDENT "(" [ expression { "," expression } ] ")"   (the call form of primary)
+// IDENT "(" [ expression { "," expression } [ "," ] ] ")"   (the call form of primary)
 Expr* Parser::parse_call(const Token& name) {
     auto* e = expr<CallExpr>(ExprKind::Call, {});
     e->name = keep(lexeme(name));
@@ -255,6 +255,7 @@ Expr* Parser::parse_call(const Token& name) {
             if (panic_) break;
             if (check(TokenKind::Comma)) {
                 advance();
+                if (check(TokenKind::RParen)) break;  // a trailing comma, as in a parameter list
                 continue;
             }
             if (!check(TokenKind::RParen))

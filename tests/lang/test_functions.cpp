@@ -104,6 +104,20 @@ TEST_CASE("recursion: factorial, fibonacci and mutual recursion", "[functions]")
     CHECK_FALSE(e->get("d")->boolean());
 }
 
+TEST_CASE("a trailing comma is allowed in a call's arguments, as in a parameter list", "[functions]") {
+    auto e = evaluate_text(
+        "fn add(a, b = 10,) { return a + b }\n"
+        "let one = add(1,)\n"
+        "let two = add(1, 2,)\n"
+        "add(3,)\n");
+    REQUIRE(e->errors().empty());
+    CHECK(number(*e, "one") == 11);
+    CHECK(number(*e, "two") == 3);
+    // One comma at the end only, and not alone.
+    CHECK_FALSE(evaluate_text("fn f(a) { return a }\nlet x = f(1,,)\n")->errors().empty());
+    CHECK_FALSE(evaluate_text("fn f(a = 1) { return a }\nlet x = f(,)\n")->errors().empty());
+}
+
 TEST_CASE("names in a body resolve when it runs, in the defining scope", "[functions]") {
     SECTION("a function called before what it calls is defined") {
         auto e = evaluate_text("fn f() { return g() }\nlet x = f()\nfn g() { return 1 }\n");
