@@ -115,18 +115,18 @@ public:
     // Reads one value of type `t` (an integer type accepts only integers).
     bool value(Scalar t, double& out, std::string_view& token) {
         if (!next(token)) return false;
-        if (is_integer(t)) {
-            int64_t i = 0;
-            auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), i);
-            if (ec != std::errc() || ptr != token.data() + token.size()) return bad_ = true, false;
-            out = static_cast<double>(i);
-            return in_range(t, i) || (bad_ = true, false);
-        }
         const char* b = token.data();
         const char* end = token.data() + token.size();
         if (*b == '+') {
-            ++b;  // from_chars takes no plus sign, and "+-1" is no number
+            ++b;  // from_chars takes no plus sign (integers and floats alike), and "+-1" is no number
             if (b != end && *b == '-') return bad_ = true, false;
+        }
+        if (is_integer(t)) {
+            int64_t i = 0;
+            auto [ptr, ec] = std::from_chars(b, end, i);
+            if (ec != std::errc() || ptr != end) return bad_ = true, false;
+            out = static_cast<double>(i);
+            return in_range(t, i) || (bad_ = true, false);
         }
         auto [ptr, ec] = std::from_chars(b, end, out);
         if (ec != std::errc() || ptr != end) return bad_ = true, false;

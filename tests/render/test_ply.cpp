@@ -143,6 +143,19 @@ TEST_CASE("PLY: CRLF headers, other type names and texture coordinate spellings"
     CHECK(r.notes.empty());
 }
 
+TEST_CASE("PLY: ASCII integers take a plus sign as floats do; '+-' is no number", "[ply]") {
+    const std::string head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty int z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const MeshFileResult r = parse_ply("p.ply", head + "+0 0 0\n1 +0 0\n0 1 +2\n+3 +0 1 +2\n");
+    REQUIRE(r.error == "");
+    REQUIRE(r.mesh);
+    CHECK(r.mesh->vertices[2] == glm::vec3(0, 1, 2));
+    CHECK(r.mesh->faces.size() == 1);
+    CHECK_FALSE(parse_ply("p.ply", head + "0 0 0\n1 0 0\n0 1 +-2\n3 0 1 2\n").error.empty());
+    CHECK_FALSE(parse_ply("p.ply", head + "0 0 0\n1 0 0\n0 1 2\n3 0 1 ++2\n").error.empty());
+}
+
 TEST_CASE("PLY: zero-area triangles are skipped with one note, as in OBJ files", "[ply]") {
     const std::string text =
         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
