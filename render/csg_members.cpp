@@ -392,8 +392,11 @@ void member_surface(const CsgMember& m, const Ray& ray, double t, uint32_t sub, 
             if (!data.uvs.empty())
                 s.uv = b0 * Vec2(data.uvs[f.x]) + b1 * Vec2(data.uvs[f.y]) + b2 * Vec2(data.uvs[f.z]);
             if (!data.normals.empty()) {
-                const Vec3 n = b0 * Vec3(data.normals[f.x]) + b1 * Vec3(data.normals[f.y]) +
-                               b2 * Vec3(data.normals[f.z]);
+                const Vec3 n0(data.normals[f.x]), n1(data.normals[f.y]), n2(data.normals[f.z]);
+                Vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
+                // Vertex normals pointing, together, to the other side than the facet's outward
+                // normal: negate the field (see triangle_surface_of in geometry_surface.cpp).
+                if (glm::dot(x.normal(n0 + n1 + n2), s.ng) < 0) n = -n;
                 const Vec3 ns = safe_normalize(x.normal(n), s.ng);
                 const double below = glm::dot(ns, s.ng);
                 s.ns = below < 0 ? ns - (2.0 * below) * s.ng : ns;

@@ -31,7 +31,14 @@ void triangle_surface_of(const Vec3 (&v)[3], const uint32_t (&local)[3], const S
     const uint32_t i0 = local[0], i1 = local[1], i2 = local[2];
     if (!m.uvs.empty()) s.uv = b0 * Vec2(m.uvs[i0]) + b1 * Vec2(m.uvs[i1]) + b2 * Vec2(m.uvs[i2]);
     if (!m.normals.empty()) {
-        Vec3 n = b0 * Vec3(m.normals[i0]) + b1 * Vec3(m.normals[i1]) + b2 * Vec3(m.normals[i2]);
+        const Vec3 n0(m.normals[i0]), n1(m.normals[i1]), n2(m.normals[i2]);
+        Vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
+        // Vertex normals that together point to the other side of the facet than its winding
+        // (a mesh whose faces wind the other way round) describe the same surface seen from that
+        // side: negate the whole field, so the shading normal is the interpolated one turned to
+        // face the viewer, not its mirror image about the facet.
+        const Vec3 sum = n0 + n1 + n2;
+        if (glm::dot(x.identity ? sum : x.normal(sum), s.ng) < 0) n = -n;
         Vec3 ns = safe_normalize(x.identity ? n : x.normal(n), s.ng);
         // An interpolated normal on the far side of the facet would send reflections into it:
         // mirror it about the facet's plane (not negate it, which would jump from grazing one way

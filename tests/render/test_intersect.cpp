@@ -202,6 +202,25 @@ TEST_CASE("mesh: face ids, smooth normals kept on the geometric side, per-vertex
     CHECK(glm::length(f->s.ns) == Approx(1));
 }
 
+TEST_CASE("mesh: vertex normals all on the other side of the winding are turned, not mirrored") {
+    // Faces wound so that the geometric normal is +z, every vertex normal leaning towards -z: the
+    // same smooth surface seen from -z. The shading normal is the interpolated one negated (turned
+    // to the geometric side), not its mirror image about the facet, which would swap the tilt.
+    auto m = std::make_shared<MeshData>();
+    m->vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m->faces = {{0, 1, 2}};
+    m->normals = {{-0.5, -0.5, -1}, {0.5, -0.5, -1}, {0, 0.5, -1}};
+    auto g = build_ok(scene_of({mesh(m)}));
+    REQUIRE(g);
+    auto h = trace(*g, {0.25, 0.25, -1}, {0, 0, 1});
+    REQUIRE(h);
+    check_vec(h->s.ng, {0, 0, 1});
+    // b0 = 0.5, b1 = 0.25, b2 = 0.25.
+    const Vec3 n =
+        glm::normalize(0.5 * Vec3(-0.5, -0.5, -1) + 0.25 * Vec3(0.5, -0.5, -1) + 0.25 * Vec3(0, 0.5, -1));
+    check_vec(h->s.ns, -n, 1e-7);
+}
+
 TEST_CASE("box: faces, normals and the unfolded-cube UV at face centres and corners") {
     auto g = build_ok(scene_of({box({-1, -2, -3}, {1, 2, 3})}));
     REQUIRE(g);
