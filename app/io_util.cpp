@@ -57,7 +57,94 @@ bool can_open_for_reading(const std::string& path, std::string& error) {
     return true;
 }
 
+namespace {
+
+// An existing output that is neither a regular file nor a directory (a device such as /dev/null,
+// a FIFO, a socket), or any existing path under /dev or /proc (/dev/stdout, /dev/fd/3, whatever
+// the descriptor leads to). It is written in place, as any tool writes to it: a new file renamed
+// over it would replace the device, the pipe or the link, and /dev is no place for a new file.
+bool is_special_output(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) return false;
+    if (!S_ISREG(st.st_mode)) return true;
+    const std::string absolute = fs::absolute(path).lexically_normal().string();
+    return absolute.rfind("/dev/", 0) == 0 || absolute.rfind("/proc/", 0) == 0;
+}
+
+// Writes all of `data` to `fd`, in pieces so that a signal stops a large write soon. False with
+// errno set, or with `interrupted` set when `how.cancel` stopped it.
+bool write_all(int fd, std::string_view data, const AtomicWrite& how, bool& interrupted) {
+    constexpr size_t piece = size_t{1} << 20;
+    size_t written = 0;
+    while (written < data.size()) {
+        if (how.cancel && how.cancel->load()) {
+            interrupted = true;
+            return false;
+        }
+        const ssize_t n = ::write(fd, data.data() + written, std::min(piece, data.size() - written));
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        written += static_cast<size_t>(n);
+    }
+    return true;
+}
+
+// The descriptor that /dev/stdout, /dev/stderr, /dev/fd/N or /proc/self/fd/N names, or -1.
+int named_descriptor(const std::string& path) {
+    if (path == "/dev/stdout") return 1;
+    if (path == "/dev/stderr") return 2;
+    for (const std::string_view prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+        if (path.rfind(prefix, 0) != 0) continue;
+        const std::string digits = path.substr(prefix.size());
+        if (digits.empty() || digits.size() > 9 ||
+            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return -1;
+        return std::stoi(digits);
+    }
+    return -1;
+}
+
+// write_file_atomic for an is_special_output path: opened (never created) and written. A path
+// naming one of our descriptors is written to that descriptor, after what it holds already
+// (`wsd render --stats --stats-json /dev/stdout > out` keeps the table and appends the JSON).
+bool write_special_output(const std::string& path, std::string_view data, std::string& error,
+                          const AtomicWrite& how) {
+    if (const int own = named_descriptor(path); own >= 0) {
+        std::cout.flush();
+        std::cerr.flush();
+        std::fflush(nullptr);
+        bool interrupted = false;
+        if (!write_all(own, data, how, interrupted)) {
+            error = interrupted ? "interrupted" : "cannot write '" + path + "': " + std::strerror(errno);
+            return false;
+        }
+        return true;
+    }
+    const int fd = ::open(path.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+    if (fd < 0) {
+        error = "cannot write '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    bool interrupted = false;
+    if (!write_all(fd, data, how, interrupted)) {
+        error = interrupted ? "interrupted" : "cannot write '" + path + "': " + std::strerror(errno);
+        ::close(fd);
+        return false;
+    }
+    if (::close(fd) != 0) {
+        error = "cannot write '" + path + "': " + std::strerror(errno);
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 bool output_directory_exists(const std::string& path, std::string& error) {
+    // A device or pipe is written where it is: its directory (/dev) need not be writable.
+    if (is_special_output(path)) return true;
     fs::path dir = fs::path(path).parent_path();
     if (dir.empty()) dir = ".";
     std::error_code ec;
@@ -100,6 +187,7 @@ bool write_file_atomic(const std::string& path, std::string_view data, std::stri
         return false;
     }
     if (!output_directory_exists(path, error)) return false;
+    if (is_special_output(path)) return write_special_output(path, data, error, how);
     const fs::path target(path);
     fs::path dir = target.parent_path();
     static int counter = 0;
@@ -126,18 +214,8 @@ bool write_file_atomic(const std::string& path, std::string_view data, std::stri
     };
     if (how.mode && ::fchmod(fd, mode) != 0)
         return give_up("cannot write '" + path + "': " + std::strerror(errno));
-    // In pieces, so that a signal stops a large write soon.
-    constexpr size_t piece = size_t{1} << 20;
-    size_t written = 0;
-    while (written < data.size()) {
-        if (cancelled()) return give_up("interrupted");
-        const ssize_t n = ::write(fd, data.data() + written, std::min(piece, data.size() - written));
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            return give_up("cannot write '" + path + "': " + std::strerror(errno));
-        }
-        written += static_cast<size_t>(n);
-    }
+    if (bool interrupted = false; !write_all(fd, data, how, interrupted))
+        return give_up(interrupted ? "interrupted" : "cannot write '" + path + "': " + std::strerror(errno));
     if (::close(fd) != 0) {
         error = "cannot write '" + path + "': " + std::strerror(errno);
         ::unlink(temp.c_str());

@@ -18,7 +18,7 @@ bool read_input_file(const std::string& path, std::string& text, std::string& er
 bool can_open_for_reading(const std::string& path, std::string& error);
 
 // False + message when the directory that would hold `path` does not exist (it is never created),
-// is not writable, or `path` itself is a directory.
+// is not writable, or `path` itself is a directory. True for an existing device, FIFO or socket.
 bool output_directory_exists(const std::string& path, std::string& error);
 
 // Whether two paths name the same file: the same once made absolute and normal, or, when both
@@ -34,7 +34,8 @@ struct AtomicWrite {
 };
 
 // Writes `data` to a temporary file next to `path`, then renames it over `path`. On failure, and
-// when `how.cancel` is set before the rename (error "interrupted"), nothing is left behind.
+// when `how.cancel` is set before the rename (error "interrupted"), nothing is left behind. An
+// existing `path` that is a device, FIFO or socket (/dev/null, /dev/stdout) is written in place.
 bool write_file_atomic(const std::string& path, std::string_view data, std::string& error,
                        const AtomicWrite& how = {});
 

@@ -1,11 +1,14 @@
 // `wsd render` and `wsd merge` through the real binary: outputs and overrides, statistics,
 // atomic output (nothing partial after any failure), interruption, and tiles that merge into
 // exactly the single render, with every merge error naming the tile at fault.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "app_test_util.h"
 
@@ -89,6 +92,30 @@ TEST_CASE("--stats-json writes the named keys", "[render]") {
     CHECK(json.find("\"camera_rays\": 1024,") != std::string::npos);  // 16×16 pixels × 4 supersamples
     CHECK(json.find("\"nonfinite_samples\": 0,") != std::string::npos);
     CHECK(json.find("\"peak_memory_bytes\": 0,") == std::string::npos);
+}
+
+TEST_CASE("--stats-json writes into a pipe or a device in place, never replacing it", "[render]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    // A FIFO stands for /dev/null or /dev/stdout: a new file renamed over it would replace it.
+    REQUIRE(::mkfifo((dir / "pipe").c_str(), 0644) == 0);
+    RunResult r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json pipe",
+                          "(timeout 20 cat pipe > got.json &);");
+    CHECK(r.status == 0);
+    CHECK(fs::is_fifo(dir / "pipe"));
+    std::string got;
+    for (int i = 0; i < 200 && got.find("\"camera_rays\"") == std::string::npos; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        got = read_file(dir / "got.json");
+    }
+    CHECK(got.find("\"camera_rays\": 1024,") != std::string::npos);
+    // /dev/fd/1 (as /dev/stdout) is this process's standard output, after the table printed there.
+    r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats --stats-json /dev/fd/1");
+    CHECK(r.status == 0);
+    const size_t table = r.out.find("Render statistics"), json = r.out.find("\"camera_rays\": 1024,");
+    CHECK(table != std::string::npos);
+    CHECK(json != std::string::npos);
+    CHECK(table < json);
 }
 
 TEST_CASE("--stats-json that would overwrite the image, or names a directory, fails before rendering",
