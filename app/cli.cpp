@@ -6,8 +6,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -72,10 +75,41 @@ const CLI::Validator a_number(
     },
     "NUMBER");
 
+// The arguments of the command line that no option or positional took (`--bogus`), when `e` is
+// about a missing or an unexpected argument.
+std::vector<std::string> unexpected_arguments(CLI::App& app, const CLI::ParseError& e) {
+    std::vector<std::string> rest;
+    if (!dynamic_cast<const CLI::RequiredError*>(&e) && !dynamic_cast<const CLI::ExtrasError*>(&e))
+        return rest;
+    for (CLI::App* sub : app.get_subcommands())
+        for (const std::string& arg : sub->remaining()) rest.push_back(arg);
+    return rest;
+}
+
 // CLI11's own wording of a parse error, in wsd's where CLI11's says little: an option given more
-// than once ("--aov: At Most 1 required but received 2") and a value it could not convert.
-std::string parse_error_message(const CLI::ParseError& e) {
+// than once ("--aov: At Most 1 required but received 2"), a value it could not convert, an option
+// without its value, and the `unexpected` arguments of the command line.
+std::string parse_error_message(const CLI::ParseError& e, const std::vector<std::string>& unexpected) {
+    // CLI11 checks required arguments before unexpected ones, so `wsd check --bogus` would say
+    // that FILE is required: the unexpected argument is the mistake to name.
+    if (!unexpected.empty()) {
+        std::string text = unexpected.size() == 1 ? "The following argument was not expected:"
+                                                  : "The following arguments were not expected:";
+        for (const std::string& arg : unexpected) text += " " + arg;
+        // `wsd check -x.wsd`: a file whose name starts with '-' reads as an option.
+        std::error_code ec;
+        for (const std::string& arg : unexpected)
+            if (arg.size() > 1 && arg[0] == '-' && std::filesystem::exists(arg, ec))
+                return text + " (to name the file '" + arg + "', write `-- " + arg + "` or `./" + arg + "`)";
+        return text;
+    }
     const std::string text = e.what();
+    // "--width: 1 required INT:INT in [1 - 100000] missing": an option given without its value.
+    const std::string required = ": 1 required ", missing = " missing";
+    const size_t required_at = text.find(required);
+    if (text.rfind("-", 0) == 0 && required_at != std::string::npos && text.size() >= missing.size() &&
+        text.compare(text.size() - missing.size(), missing.size(), missing) == 0)
+        return text.substr(0, required_at) + " needs a value";
     const std::string at_most = ": At Most 1 required but received ";
     if (const size_t at = text.find(at_most); at != std::string::npos)
         return text.substr(0, at) + " was given " + text.substr(at + at_most.size()) +
@@ -351,7 +385,7 @@ int run_cli(int argc, char** argv) {
             app.exit(e);  // --help, --version
             return exit_code::ok;
         }
-        std::cerr << "wsd: error: " << parse_error_message(e) << '\n';
+        std::cerr << "wsd: error: " << parse_error_message(e, unexpected_arguments(app, e)) << '\n';
         usage_hint();
         return exit_code::usage;
     }

@@ -60,6 +60,31 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
     CHECK(files == std::vector<std::string>{"s.wsd"});
 }
 
+TEST_CASE("an unknown option is named even when a required argument is missing too", "[cli]") {
+    TempDir dir;
+    write_file(dir / "-x.wsd", tiny_scene());
+    for (const char* args : {"check --bogus", "render --bogus", "fmt --bogus", "check --version"}) {
+        INFO(args);
+        const RunResult r = run_wsd(dir, args);
+        CHECK(r.status == 2);
+        CHECK(r.err.find("was not expected: --") != std::string::npos);
+        CHECK(r.err.find("is required") == std::string::npos);
+    }
+    // A file whose name starts with '-': the message says how to name it.
+    RunResult r = run_wsd(dir, "check -x.wsd");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("was not expected: -x.wsd (to name the file '-x.wsd', write `-- -x.wsd` or "
+                     "`./-x.wsd`)") != std::string::npos);
+    CHECK(run_wsd(dir, "check -- -x.wsd").status == 0);
+    // An option without its value says so in words, not in CLI11's type names.
+    r = run_wsd(dir, "render ./-x.wsd --width");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("wsd: error: --width needs a value\n") != std::string::npos);
+    r = run_wsd(dir, "check ./-x.wsd -D");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("wsd: error: --define needs a value\n") != std::string::npos);
+}
+
 TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
     TempDir dir;
     write_file(dir / "s.wsd", tiny_scene());
