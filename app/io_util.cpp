@@ -54,6 +54,12 @@ bool can_open_for_reading(const std::string& path, std::string& error) {
         error = "cannot read '" + path + "': " + std::strerror(errno);
         return false;
     }
+    // A device or a pipe (/dev/zero) is refused here, as `check` refuses it, not later as an
+    // image that does not decode.
+    if (!fs::is_regular_file(path, ec)) {
+        error = "cannot read '" + path + "': it is not a regular file";
+        return false;
+    }
     return true;
 }
 

@@ -14,7 +14,7 @@ namespace wsd::app {
 // Reads the whole file ("-" = stdin). False + a message naming the path on failure.
 bool read_input_file(const std::string& path, std::string& text, std::string& error);
 
-// True when `path` names an existing regular file we can open for reading.
+// True when `path` names an existing regular file we can open for reading; else false + message.
 bool can_open_for_reading(const std::string& path, std::string& error);
 
 // False + message when the directory that would hold `path` does not exist (it is never created),

@@ -82,7 +82,7 @@ TEST_CASE("diff compares renders in any format on display values", "[diff]") {
     CHECK(std::stod(field(r.out, "SSIM")) < 1);
 }
 
-TEST_CASE("diff failures: sizes 1, malformed 1, missing 3, bad heat map name 2", "[diff]") {
+TEST_CASE("diff failures: sizes 1, malformed 1, missing or not a file 3, bad heat map name 2", "[diff]") {
     TempDir dir;
     write_tga(dir / "a.tga", 12, 10, gradient(12, 10, 0));
     write_tga(dir / "small.tga", 6, 10, gradient(6, 10, 0));
@@ -93,6 +93,10 @@ TEST_CASE("diff failures: sizes 1, malformed 1, missing 3, bad heat map name 2",
     CHECK_FALSE(fs::exists(dir / "heat.png"));
     CHECK(run_wsd(dir, "diff a.tga junk.png").status == 1);
     CHECK(run_wsd(dir, "diff a.tga nothing.png").status == 3);
+    // A file that is not a regular one cannot be read as an image: 3, as for `check`.
+    r = run_wsd(dir, "diff /dev/zero a.tga");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("wsd: error: cannot read '/dev/zero': it is not a regular file") != std::string::npos);
     CHECK(run_wsd(dir, "diff a.tga a.tga -o heat.xyz").status == 2);
     CHECK(run_wsd(dir, "diff a.tga a.tga -o no/dir/heat.png").status == 3);
 }
