@@ -81,6 +81,7 @@ std::vector<std::string> unexpected_arguments(CLI::App& app, const CLI::ParseErr
     std::vector<std::string> rest;
     if (!dynamic_cast<const CLI::RequiredError*>(&e) && !dynamic_cast<const CLI::ExtrasError*>(&e))
         return rest;
+    rest = app.remaining();  // `wsd -V`: before any command
     for (CLI::App* sub : app.get_subcommands())
         for (const std::string& arg : sub->remaining()) rest.push_back(arg);
     return rest;
