@@ -72,7 +72,7 @@ int check_json(const std::string& path, const lang::LoadOptions& options, const 
 int run_check(const CheckArgs& args) {
     int worst = exit_code::ok;
     nlohmann::ordered_json results = nlohmann::ordered_json::array();
-    for (const std::string& path : expand_scene_paths(args.files)) {
+    for (const std::string& path : expand_scene_paths(args.files, !args.input.no_warnings)) {
         // Each file reads the defines afresh: one that a file does not use is a warning for it.
         lang::ParamTable params;
         if (const int s = evaluate_defines(args.input.defines, params); s != exit_code::ok) return s;

@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <system_error>
 
+#include "app/io_util.h"
+
 namespace wsd::app {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> expand_scene_paths(const std::vector<std::string>& args) {
+std::vector<std::string> expand_scene_paths(const std::vector<std::string>& args, bool warn_empty) {
     std::vector<std::string> paths;
     for (const std::string& arg : args) {
         std::error_code ec;
@@ -24,6 +26,9 @@ std::vector<std::string> expand_scene_paths(const std::vector<std::string>& args
             if ((p.extension() == ".wsd" || p.extension() == ".wsdi") && it->is_regular_file(ec))
                 found.push_back(p.string());
         }
+        // `wsd fmt --check scenes/` on a directory without scenes (or a mistyped one) checks
+        // nothing: say so, not silently succeed.
+        if (found.empty() && warn_empty) warn("no .wsd or .wsdi file under '" + arg + "'");
         std::sort(found.begin(), found.end());
         paths.insert(paths.end(), found.begin(), found.end());
     }

@@ -7,7 +7,8 @@
 namespace wsd::app {
 
 // `args` with each directory replaced by the .wsd and .wsdi files under it, recursively, in
-// sorted order; other arguments (files, "-", paths that do not exist) stay as given.
-std::vector<std::string> expand_scene_paths(const std::vector<std::string>& args);
+// sorted order; other arguments (files, "-", paths that do not exist) stay as given. A directory
+// with no such file is a warning on stderr, unless `warn_empty` is false.
+std::vector<std::string> expand_scene_paths(const std::vector<std::string>& args, bool warn_empty = true);
 
 }  // namespace wsd::app

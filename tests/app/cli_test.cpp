@@ -85,6 +85,22 @@ TEST_CASE("an unknown option is named even when a required argument is missing t
     CHECK(r.err.find("wsd: error: --define needs a value\n") != std::string::npos);
 }
 
+TEST_CASE("check and fmt warn about a directory that holds no scene file", "[cli][check][fmt]") {
+    TempDir dir;
+    fs::create_directories(dir / "empty/sub");
+    write_file(dir / "empty/notes.txt", "not a scene");
+    for (const char* args : {"check empty", "check --format json empty", "fmt empty", "fmt --check empty"}) {
+        INFO(args);
+        const RunResult r = run_wsd(dir, args);
+        CHECK(r.status == 0);
+        CHECK(r.err == "wsd: warning: no .wsd or .wsdi file under 'empty'\n");
+    }
+    CHECK(run_wsd(dir, "check --format json empty").out == "[]\n");
+    const RunResult quiet = run_wsd(dir, "check --no-warnings empty");
+    CHECK(quiet.status == 0);
+    CHECK(quiet.err.empty());
+}
+
 TEST_CASE("check prints the ok line with the counts", "[cli][check]") {
     TempDir dir;
     write_file(dir / "s.wsd", tiny_scene());
