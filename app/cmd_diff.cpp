@@ -49,6 +49,11 @@ int run_diff(const DiffArgs& args) {
         if (!known_image_format(args.heatmap))
             return fail(exit_code::usage, unknown_format_message(args.heatmap));
         if (!output_directory_exists(args.heatmap, error)) return fail(exit_code::io, error);
+        // `wsd diff a.png b.png -o a.png` would replace an image compared with the heat map.
+        for (const std::string& input : {args.a, args.b})
+            if (same_path(input, args.heatmap))
+                return fail(exit_code::usage,
+                            "-o '" + args.heatmap + "' names the compared image '" + input + "'");
     }
     DisplayImage a, b;
     if (const int s = read_display(args.a, a); s != exit_code::ok) return s;

@@ -158,6 +158,10 @@ int run_merge(const MergeArgs& args) {
     std::string error;
     if (!known_image_format(args.output)) return fail(exit_code::usage, unknown_format_message(args.output));
     if (!output_directory_exists(args.output, error)) return fail(exit_code::io, error);
+    // `-o` naming one of the tiles would replace it with the merged image.
+    for (const std::string& path : args.tiles)
+        if (same_path(path, args.output))
+            return fail(exit_code::usage, "-o '" + args.output + "' names the tile '" + path + "'");
 
     std::vector<Tile> tiles;
     for (const std::string& path : args.tiles) {

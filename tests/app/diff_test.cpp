@@ -99,6 +99,13 @@ TEST_CASE("diff failures: sizes 1, malformed 1, missing or not a file 3, bad hea
     CHECK(r.err.find("wsd: error: cannot read '/dev/zero': it is not a regular file") != std::string::npos);
     CHECK(run_wsd(dir, "diff a.tga a.tga -o heat.xyz").status == 2);
     CHECK(run_wsd(dir, "diff a.tga a.tga -o no/dir/heat.png").status == 3);
+    // A heat map that would replace one of the compared images is refused, that image untouched.
+    const std::string before = read_file(dir / "a.tga");
+    write_tga(dir / "b.tga", 12, 10, gradient(12, 10, 5));
+    r = run_wsd(dir, "diff b.tga a.tga -o ./a.tga");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("-o './a.tga' names the compared image 'a.tga'") != std::string::npos);
+    CHECK(read_file(dir / "a.tga") == before);
 }
 
 TEST_CASE("diff notes the values of an image that are not finite, and how it compares them", "[diff]") {

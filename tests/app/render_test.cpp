@@ -319,6 +319,14 @@ TEST_CASE("merge refuses missing, duplicate, overlapping, foreign and reseeded t
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm nope.pfm t4.pfm -o merged.png").status == 3);
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.xyz").status == 2);
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o nodir/merged.png").status == 3);
+    {
+        // -o naming one of the tiles would replace it with the merged image: refused, tile intact.
+        const std::string tile = read_file(dir / "t4.pfm");
+        const RunResult r = run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o ./t4.pfm");
+        CHECK(r.status == 2);
+        CHECK(r.err.find("-o './t4.pfm' names the tile 't4.pfm'") != std::string::npos);
+        CHECK(read_file(dir / "t4.pfm") == tile);
+    }
     CHECK(run_wsd(dir, "merge t1.pfm t2.pfm t3.pfm t4.pfm -o merged.png").status == 0);
 
     // A failed merge leaves an existing output as it was, and no temporary file behind.
