@@ -248,7 +248,8 @@ TEST_CASE("four tiles merge into exactly the single render", "[tiles]") {
     REQUIRE(run_wsd(dir, "render s.wsd -o whole.png --quiet").status == 0);
     REQUIRE(run_wsd(dir, "render s.wsd -o whole.pfm --quiet --threads 1").status == 0);
     for (int i = 1; i <= 4; ++i) {
-        const std::string tile = "t" + std::to_string(i) + ".pfm";
+        // Built with append: GCC 12's -Wrestrict misreads "t" + std::to_string(i) once inlined here.
+        const std::string tile = std::string("t").append(std::to_string(i)).append(".pfm");
         REQUIRE(
             run_wsd(dir, "render s.wsd --tile " + std::to_string(i) + "/4 -o " + tile + " --quiet").status ==
             0);
