@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <new>
 #include <string>
 
@@ -67,6 +68,12 @@ bool read_whole_file(const std::string& path, FileBytes& out, std::string& reaso
         return false;
     }
     return read_to_end(file.get(), S_ISREG(st.st_mode) ? static_cast<size_t>(st.st_size) : 0, out, reason);
+}
+
+std::string extension_lower(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;
+    return ext;
 }
 
 }  // namespace wsd::render

@@ -23,4 +23,7 @@ struct FileBytes {
 // "it is not a regular file", "out of memory", or the system's message.
 bool read_whole_file(const std::string& path, FileBytes& out, std::string& reason);
 
+// The extension of `path` with its dot, in ASCII lower case (".png" for "a/B.PNG"; "" for none).
+std::string extension_lower(const std::string& path);
+
 }  // namespace wsd::render

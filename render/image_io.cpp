@@ -30,11 +30,6 @@ namespace wsd::render {
 
 namespace {
 
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 uint8_t to_byte(float v) {
     const double x = v > 0 ? std::min(double(v), 1.0) : 0.0;  // NaN → 0
     return uint8_t(std::lround(srgb_encode(x) * 255.0));
@@ -92,7 +87,7 @@ bool encode(ImageFormat format, const Film& film, Sink& sink) {
 }  // namespace
 
 ImageFormat format_from_extension(const std::string& path) {
-    const std::string ext = lower(std::filesystem::path(path).extension().string());
+    const std::string ext = extension_lower(path);
     if (ext == ".png") return ImageFormat::Png;
     if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::Jpeg;
     if (ext == ".bmp") return ImageFormat::Bmp;

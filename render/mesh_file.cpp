@@ -1,7 +1,5 @@
 #include "render/mesh_file.h"
 
-#include <filesystem>
-
 #include "render/file_util.h"
 #include "render/obj.h"
 #include "render/ply.h"
@@ -18,9 +16,7 @@ MeshFileResult load_mesh_file(const std::string& path) {
     }
     if (looks_like_ply(file.view())) return parse_ply(path, file.view());
     // A file named .ply is not read as OBJ: its OBJ diagnostics would only mislead.
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = (c >= 'A' && c <= 'Z') ? char(c - 'A' + 'a') : c;
-    if (ext == ".ply") {
+    if (extension_lower(path) == ".ply") {
         MeshFileResult result;
         result.error = path + ":1: not a PLY file: its first line is not 'ply'";
         return result;
