@@ -106,10 +106,8 @@ std::string parse_error_message(const CLI::ParseError& e, const std::vector<std:
     }
     const std::string text = e.what();
     // "--width: 1 required INT:INT in [1 - 100000] missing": an option given without its value.
-    const std::string required = ": 1 required ", missing = " missing";
-    const size_t required_at = text.find(required);
-    if (text.rfind("-", 0) == 0 && required_at != std::string::npos && text.size() >= missing.size() &&
-        text.compare(text.size() - missing.size(), missing.size(), missing) == 0)
+    if (const size_t required_at = text.find(": 1 required ");
+        text.starts_with('-') && required_at != std::string::npos && text.ends_with(" missing"))
         return text.substr(0, required_at) + " needs a value";
     const std::string at_most = ": At Most 1 required but received ";
     if (const size_t at = text.find(at_most); at != std::string::npos)
