@@ -59,11 +59,8 @@ void check_unused_images(const std::vector<TexturePtr>& named, const render::Sce
         if (used.count(image_path)) continue;
         std::string error;
         if (images ? images->get(image_path, error) : render::load_image(image_path, error)) continue;
-        std::vector<Span> chain;
-        for (const IncludeSite* s = t->chain.get(); s; s = s->parent.get()) chain.push_back(s->site);
-        for (auto it = chain.rbegin(); it != chain.rend(); ++it) diags.push_include(*it);
-        diags.error(t->span, error.empty() ? "cannot read image '" + image_path + "'" : error);
-        for (size_t i = 0; i < chain.size(); ++i) diags.pop_include();
+        error_in_includes(diags, t->chain, t->span,
+                          error.empty() ? "cannot read image '" + image_path + "'" : error);
     }
 }
 

@@ -186,6 +186,10 @@ private:
     friend class ObjectLowering;
 };
 
+// An error at `span` reported with the include sites of `chain` as its notes, as if it were
+// reported while those includes ran.
+void error_in_includes(Diagnostics& diags, const IncludeChain& chain, Span span, std::string message);
+
 // Each SpecError from render::build_scene as an error at the value of the field it concerns when
 // that was written, else at a mesh face's own span when known, else at its element's span; with
 // the include-chain notes of the file it is in.

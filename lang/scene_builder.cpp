@@ -132,12 +132,16 @@ void report_spec_errors(const std::vector<render::SpecError>& errors, const Lowe
         const SpanRecord& rec = tag < scene.spans.size() ? scene.spans[tag] : scene.spans[0];
         const Span span = locate(e, rec, scene, sources);
         const std::string message = e.message.empty() ? "invalid scene element" : e.message;
-        std::vector<Span> chain;
-        for (const IncludeSite* s = rec.chain.get(); s; s = s->parent.get()) chain.push_back(s->site);
-        for (auto it = chain.rbegin(); it != chain.rend(); ++it) diags.push_include(*it);
-        diags.error(span, message);
-        for (size_t i = 0; i < chain.size(); ++i) diags.pop_include();
+        error_in_includes(diags, rec.chain, span, message);
     }
+}
+
+void error_in_includes(Diagnostics& diags, const IncludeChain& chain, Span span, std::string message) {
+    std::vector<Span> sites;
+    for (const IncludeSite* s = chain.get(); s; s = s->parent.get()) sites.push_back(s->site);
+    for (auto it = sites.rbegin(); it != sites.rend(); ++it) diags.push_include(*it);
+    diags.error(span, std::move(message));
+    for (size_t i = 0; i < sites.size(); ++i) diags.pop_include();
 }
 
 }  // namespace wsd::lang
