@@ -119,7 +119,7 @@ void Interpreter::call_depth_error(const CallExpr& call) {
 }
 
 bool Interpreter::take_call_step(const CallExpr& call) {
-    if (cancel_now()) return false;
+    if (cancel_now() || !take_memory_step(call.name_span)) return false;
     if (iterations_ < limits_.loop_iterations) {
         ++iterations_;
         return true;

@@ -19,6 +19,7 @@
 #include "lang/load.h"
 #include "lang/parser.h"
 #include "render/file_util.h"
+#include "render/memory_budget.h"
 #include "render/text_util.h"
 
 namespace wsd::lang {
@@ -63,6 +64,7 @@ Interpreter::DepthGuard::DepthGuard(Interpreter& in, Span at) : in_(in) {
 Interpreter::Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilder& scene, Limits limits)
     : sources_(sources), diags_(diags), scene_(scene), limits_(limits) {
     top_ = scope_ = std::make_shared<Scope>();  // the file's top scope; builtins live outside it
+    resident_at_start_ = resident_at_check_ = render::resident_bytes();
 }
 
 BlockContext Interpreter::context(bool default_material) {
@@ -155,7 +157,7 @@ bool Interpreter::take_iterations(double count, Span at) {
 // One iteration in a fresh scope; false stops the loop (after an error, so that a broken body is
 // reported once rather than once per iteration).
 bool Interpreter::run_loop_body(const ForStmt& stmt, const Value& item) {
-    if (cancel_now()) return false;
+    if (cancel_now() || !take_memory_step(stmt.span)) return false;
     const size_t errors_before = diags_.error_count();
     push_scope();
     bind(stmt.name, stmt.name_span, item);

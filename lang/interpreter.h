@@ -170,6 +170,10 @@ private:
     // Whether `instances` instance shapes can be held while the scene loads (checked when the
     // count first passes each doubling from 65,536), else an error at added_by.
     bool instances_fit(size_t instances, Span added_by);
+    // Every kMemoryStep loop iterations and calls (taken at `at`): false, having reported an
+    // error at `at`, when what the machine can still give is nearly spent (lang/memory_steps.cpp).
+    bool take_memory_step(Span at) { return ++memory_steps_ % kMemoryStep != 0 || memory_left(at); }
+    bool memory_left(Span at);
     std::string_view keyword_text(const Stmt& s) const;
 
     // A block's items evaluated in order and checked against `table` as they are.
@@ -207,6 +211,11 @@ private:
     bool aborted_ = false;
     const std::atomic<bool>* cancel_ = nullptr;
     size_t next_memory_check_ = size_t{1} << 16;  // instances
+    // What the scene takes while it loads, whatever makes it (objects, lists, strings): the
+    // process's resident memory when the interpreter began and at the last check.
+    static constexpr uint32_t kMemoryStep = 16384;
+    uint32_t memory_steps_ = 0;
+    size_t resident_at_start_ = 0, resident_at_check_ = 0;
     bool cancelled_ = false;
     std::optional<Span> first_settings_, first_camera_;  // the first such statement that ran
     // Where object statements deliver: the members of the group or CSG body being evaluated

@@ -93,6 +93,9 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
             aborted = interpreter.aborted();
             named_images = interpreter.named_images();
         }
+        // A run stopped by an error is not lowered: that would copy every shape it made, and one
+        // stopped for memory has little to spare.
+        if (aborted && diags.error_count() > errors_before) return std::nullopt;
         lowered = builder.finish();
     }
     if (!options.fragment && !camera_seen && !aborted && !diags.too_many())

@@ -1,9 +1,15 @@
 #include "render/memory_budget.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -54,7 +60,7 @@ size_t shape_bytes(const ShapeSpec& s, MemoryEstimate& e) {
     }
 }
 
-std::optional<size_t> read_number_file(const char* path) {
+std::optional<size_t> read_number_file(const std::filesystem::path& path) {
     std::ifstream in(path);
     std::string word;
     if (!(in >> word) || word == "max") return std::nullopt;
@@ -117,6 +123,44 @@ MemoryEstimate estimate_memory(const SceneSpec& spec) {
     return e;
 }
 
+std::optional<size_t> cgroup_memory_left(const std::string& self_cgroup, const std::filesystem::path& root) {
+    namespace fs = std::filesystem;
+    // cgroup v1 writes "no limit" as the largest page count it can hold (about 2^63 bytes).
+    constexpr size_t kNoLimit = size_t{1} << 62;
+    std::optional<size_t> left;
+    std::istringstream lines(self_cgroup);
+    for (std::string line; std::getline(lines, line);) {
+        // hierarchy-id:controllers:path
+        const size_t a = line.find(':'), b = a == std::string::npos ? a : line.find(':', a + 1);
+        if (b == std::string::npos) continue;
+        const std::string id = line.substr(0, a), controllers = line.substr(a + 1, b - a - 1);
+        fs::path base;
+        const char *max_file = nullptr, *current_file = nullptr;
+        if (id == "0" && controllers.empty()) {  // v2: one unified hierarchy
+            base = root, max_file = "memory.max", current_file = "memory.current";
+        } else if (("," + controllers + ",").find(",memory,") != std::string::npos) {  // v1
+            base = root / "memory", max_file = "memory.limit_in_bytes",
+            current_file = "memory.usage_in_bytes";
+        } else {
+            continue;
+        }
+        const fs::path rel = fs::path(line.substr(b + 1)).relative_path();
+        std::error_code ec;
+        // A container may mount its own cgroup as the root, where the path names no directory.
+        fs::path dir = rel.empty() || !fs::is_directory(base / rel, ec) ? base : base / rel;
+        for (;;) {
+            if (auto max = read_number_file(dir / max_file); max && *max < kNoLimit) {
+                const size_t current = read_number_file(dir / current_file).value_or(0);
+                const size_t l = *max > current ? *max - current : 0;
+                if (!left || l < *left) left = l;
+            }
+            if (dir == base) break;
+            dir = dir.parent_path();
+        }
+    }
+    return left;
+}
+
 MemoryAvailable available_memory() {
     MemoryAvailable a;
     a.bytes = mem_available();
@@ -127,18 +171,35 @@ MemoryAvailable available_memory() {
             a.source = source;
         }
     };
-    if (auto max = read_number_file("/sys/fs/cgroup/memory.max")) {
-        const size_t current = read_number_file("/sys/fs/cgroup/memory.current").value_or(0);
-        cap(*max > current ? *max - current : 0, "the cgroup's memory limit");
+    {
+        std::ifstream in("/proc/self/cgroup");
+        const std::string self((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (auto left = cgroup_memory_left(self, "/sys/fs/cgroup")) cap(*left, "the cgroup's memory limit");
     }
     if (const char* env = std::getenv("WSD_MAX_MEMORY"); env && *env) {
-        if (auto limit = parse_size(env))
+        if (auto limit = parse_size(env)) {
             cap(*limit, "WSD_MAX_MEMORY");
-        else
+            a.fixed = a.source == "WSD_MAX_MEMORY";
+        } else
             a.error =
                 std::string("WSD_MAX_MEMORY='") + env + "' is not a size (bytes, or a number with K, M or G)";
     }
     return a;
+}
+
+size_t resident_bytes() {
+    // read(2) rather than a stream: the interpreter asks often while a scene loads.
+    const int fd = open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return 0;
+    char buf[128];
+    const ssize_t n = read(fd, buf, sizeof buf - 1);
+    close(fd);
+    if (n <= 0) return 0;
+    buf[n] = '\0';
+    unsigned long long size = 0, resident = 0;
+    if (std::sscanf(buf, "%llu %llu", &size, &resident) != 2) return 0;
+    const long page = sysconf(_SC_PAGESIZE);
+    return static_cast<size_t>(resident) * static_cast<size_t>(page > 0 ? page : 4096);
 }
 
 std::string memory_text(size_t bytes) {

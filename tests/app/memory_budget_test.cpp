@@ -113,3 +113,78 @@ TEST_CASE("instances that cannot be held while the scene loads are refused befor
     CHECK(r.err.find("nest.wsd:6:1: error: the scene's 16777216 instances need about") != std::string::npos);
     CHECK(r.err.find("of WSD_MAX_MEMORY") != std::string::npos);
 }
+
+TEST_CASE("a loop that makes more than the memory it may use is stopped while the scene loads",
+          "[memory][e2e]") {
+    // A million spheres, about 2 GB while the scene loads and never instances: the check every
+    // few thousand iterations stops the loop once 64 MiB are nearly taken.
+    TempDir dir;
+    const std::string scene =
+        "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
+        "let n = 1000000\n"
+        "for i in 0 .. n { sphere { center <i, 0, 0>  radius 0.4  material { color <1, 1, 1> } } }\n";
+    write_file(dir / "many.wsd", scene);
+    const RunResult r = run_wsd(dir, "render many.wsd -o many.png", "WSD_MAX_MEMORY=64M");
+    INFO(r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find("many.wsd:4:1: error: out of memory while loading: the scene has taken ") !=
+          std::string::npos);
+    CHECK(r.err.find(" left of WSD_MAX_MEMORY would not hold much more") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir.path() / "many.png"));
+
+    // A thousand fit, and so does a loop of many steps that keeps nothing.
+    std::string small = scene;
+    small.replace(small.find("1000000"), 7, "1000");
+    write_file(dir / "small.wsd", small);
+    const RunResult fits = run_wsd(dir, "check small.wsd", "WSD_MAX_MEMORY=64M");
+    INFO(fits.err);
+    CHECK(fits.status == 0);
+    write_file(dir / "steps.wsd",
+               "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
+               "for i in 0 .. 200000 { let t = [i, i + 1, i + 2] }\n"
+               "sphere { center <0, 0, 0>  radius 1  material { } }\n");
+    const RunResult steps = run_wsd(dir, "check steps.wsd", "WSD_MAX_MEMORY=64M");
+    INFO(steps.err);
+    CHECK(steps.status == 0);
+}
+
+TEST_CASE("the memory a process's cgroups still allow is the tightest of their limits", "[memory]") {
+    TempDir dir;
+    const fs::path root = dir.path();
+    const auto put = [&](const fs::path& file, const std::string& text) {
+        fs::create_directories(file.parent_path());
+        write_file(file.string(), text);
+    };
+    // cgroup v2: a Slurm job's limit two levels above the task's cgroup, a looser one above it
+    // and "max" below it.
+    fs::create_directories(root / "system.slice/job_7/step_0/task_0");
+    put(root / "system.slice/memory.max", "5000000\n");
+    put(root / "system.slice/memory.current", "100\n");
+    put(root / "system.slice/job_7/memory.max", "1000000\n");
+    put(root / "system.slice/job_7/memory.current", "400000\n");
+    put(root / "system.slice/job_7/step_0/memory.max", "max\n");
+    put(root / "system.slice/job_7/step_0/memory.current", "399000\n");
+    const std::string v2 = "0::/system.slice/job_7/step_0/task_0\n";
+    CHECK(cgroup_memory_left(v2, root) == std::optional<size_t>(600000));
+    // A tighter one nearer the task wins; a cgroup over its limit leaves nothing.
+    put(root / "system.slice/job_7/step_0/memory.max", "399500\n");
+    CHECK(cgroup_memory_left(v2, root) == std::optional<size_t>(500));
+    put(root / "system.slice/job_7/step_0/memory.max", "300000\n");
+    CHECK(cgroup_memory_left(v2, root) == std::optional<size_t>(0));
+    // No limit anywhere, or a path that names no directory (a container that mounts its own
+    // cgroup as the root): the root's files.
+    CHECK_FALSE(cgroup_memory_left("0::/\n", root).has_value());
+    put(root / "memory.max", "2048\n");
+    put(root / "memory.current", "48\n");
+    CHECK(cgroup_memory_left("0::/elsewhere/x\n", root) == std::optional<size_t>(2000));
+
+    // cgroup v1: the memory controller's own hierarchy, whose "no limit" is a huge number.
+    put(root / "memory/memory.limit_in_bytes", "9223372036854771712\n");
+    put(root / "memory/slurm/uid_0/job_9/memory.limit_in_bytes", "3000\n");
+    put(root / "memory/slurm/uid_0/job_9/memory.usage_in_bytes", "1000\n");
+    fs::create_directories(root / "memory/slurm/uid_0/job_9/step_batch");
+    const std::string v1 =
+        "12:pids:/slurm\n4:cpuacct,memory:/slurm/uid_0/job_9/step_batch\n1:name=systemd:/\n";
+    CHECK(cgroup_memory_left(v1, root) == std::optional<size_t>(2000));
+    CHECK_FALSE(cgroup_memory_left("4:cpu:/a\n", root).has_value());
+}
