@@ -263,9 +263,11 @@ int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const A
     return exit_code::ok;
 }
 
-// --stats (a table on stdout) and --stats-json FILE: an exit status.
+// --stats (a table on stdout) and --stats-json FILE: an exit status. The JSON is the last part of
+// the frame's output: when it cannot be written, the files in `written` (the image and its
+// auxiliary images, just written) are removed, so that a failed frame leaves none of its output.
 int report_stats(const RenderArgs& args, const std::string& stats_json, const lang::LoadedScene& loaded,
-                 const render::RenderResult& result) {
+                 const render::RenderResult& result, const std::vector<std::string>& written) {
     const render::Settings& settings = loaded.spec.settings;
     std::string error;
     RenderReport report;
@@ -288,8 +290,10 @@ int report_stats(const RenderArgs& args, const std::string& stats_json, const la
     report.target_error = args.target_error;
     report.time_limit = args.time_limit;
     if (args.stats) std::cout << stats_table(report) << std::flush;
-    if (!stats_json.empty() && !write_file_atomic(stats_json, app::stats_json(report), error))
+    if (!stats_json.empty() && !write_file_atomic(stats_json, app::stats_json(report), error)) {
+        for (const std::string& path : written) remove_output(path);
         return fail(exit_code::io, error);
+    }
     return exit_code::ok;
 }
 
@@ -384,6 +388,13 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
     } else if (!write_image_with_aovs(output, result.film, result.aovs, aovs, error)) {
         return fail(exit_code::io, error);
     }
+    if (args.stats || !stats_path.empty()) {
+        const std::vector<std::string> written =
+            tile_file ? std::vector<std::string>{output} : output_paths(output, aovs);
+        if (const int status = report_stats(args, stats_path, *loaded, result, written);
+            status != exit_code::ok)
+            return status;
+    }
     if (!args.quiet)
         std::cerr << wrote_line(
                          output, tile, settings,
@@ -398,8 +409,6 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
                   << " not finite or too large for single precision (an overflow such as ambient × "
                      "colour, or emission, beyond 3.4e38) and "
                   << (n == 1 ? "was" : "were") << " written as black\n";
-
-    if (args.stats || !stats_path.empty()) return report_stats(args, stats_path, *loaded, result);
     return exit_code::ok;
 }
 

@@ -240,6 +240,12 @@ bool write_file_atomic(const std::string& path, std::string_view data, std::stri
     return true;
 }
 
+void remove_output(const std::string& path) {
+    if (is_special_output(path)) return;
+    std::error_code ec;
+    fs::remove(path, ec);
+}
+
 int flush_stdout(int status) {
     errno = 0;
     std::cout.flush();

@@ -39,6 +39,10 @@ struct AtomicWrite {
 bool write_file_atomic(const std::string& path, std::string_view data, std::string& error,
                        const AtomicWrite& how = {});
 
+// Removes an output that write_file_atomic wrote, when a later part of the same output failed. A
+// device, FIFO or socket written in place (/dev/stdout) is left as it is.
+void remove_output(const std::string& path);
+
 // Flushes stdout. When something written to it was lost (a full disk, /dev/full), says so and
 // returns exit_code::io in place of a `status` of success or input errors; else `status`.
 int flush_stdout(int status);

@@ -201,6 +201,24 @@ TEST_CASE("a run whose first frame fails says where it stopped", "[frames][atomi
     CHECK(sorted_files(dir) == std::vector<std::string>{"m.wsd"});
 }
 
+TEST_CASE("a frame whose --stats-json cannot be written leaves none of its output", "[frames][atomic]") {
+    if (!fs::exists("/dev/full")) return;  // writes to it fail with ENOSPC
+    TempDir dir;
+    write_file(dir / "c.wsd", clock_scene);
+    // The image and its auxiliary images are written first, then the JSON fails: they go too.
+    RunResult r = run_wsd(
+        dir, "render c.wsd --quiet --frames 1-3 --frame 2 -o 'f-#.png' --aov depth --stats-json /dev/full");
+    CHECK(r.status == 3);
+    CHECK(r.err.find("cannot write '/dev/full'") != std::string::npos);
+    CHECK(r.err.find("stopped at frame 2; no frame was written") != std::string::npos);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"c.wsd"});
+    // The same for a still, an .exr and a tile file.
+    CHECK(run_wsd(dir, "render c.wsd --quiet -o s.exr --aov albedo --stats-json /dev/full").status == 3);
+    CHECK(run_wsd(dir, "render c.wsd --quiet --tile 1/2 --aov normal --stats-json /dev/full").status == 3);
+    CHECK(sorted_files(dir) == std::vector<std::string>{"c.wsd"});
+    CHECK(fs::exists("/dev/full"));  // a device written in place is never removed
+}
+
 TEST_CASE("a warning that every frame gives is printed once per run", "[frames][warnings]") {
     TempDir dir;
     write_file(dir / "c.wsd", clock_scene);  // no lights: a warning at every frame
