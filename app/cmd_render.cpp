@@ -266,12 +266,15 @@ int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const A
 // --stats (a table on stdout) and --stats-json FILE: an exit status. The JSON is the last part of
 // the frame's output: when it cannot be written, the files in `written` (the image and its
 // auxiliary images, just written) are removed, so that a failed frame leaves none of its output.
-int report_stats(const RenderArgs& args, const std::string& stats_json, const lang::LoadedScene& loaded,
-                 const render::RenderResult& result, const std::vector<std::string>& written) {
+int report_stats(const RenderArgs& args, const FrameJob& job, const std::string& stats_json,
+                 const lang::LoadedScene& loaded, const render::RenderResult& result,
+                 const std::vector<std::string>& written) {
     const render::Settings& settings = loaded.spec.settings;
     std::string error;
     RenderReport report;
     report.scene = display_path(args.scene);
+    if (job.animated) report.frame = job.time.frame;
+    report.clock = job.time.clock;
     report.width = settings.width;
     report.height = settings.height;
     report.region_width = result.film.width;
@@ -391,7 +394,7 @@ int render_frame(const RenderArgs& args, RenderRun& run, TileRequest tile, const
     if (args.stats || !stats_path.empty()) {
         const std::vector<std::string> written =
             tile_file ? std::vector<std::string>{output} : output_paths(output, aovs);
-        if (const int status = report_stats(args, stats_path, *loaded, result, written);
+        if (const int status = report_stats(args, job, stats_path, *loaded, result, written);
             status != exit_code::ok)
             return status;
     }

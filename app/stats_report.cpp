@@ -55,9 +55,10 @@ std::string stats_table(const RenderReport& r) {
     const std::string rule(72, '-');
     const render::RayStats& s = r.stats;
     std::ostringstream out;
-    out << rule << '\n'
-        << "Render statistics: " << r.scene << '\n'
-        << "Image resolution " << r.width << " x " << r.height;
+    out << rule << '\n' << "Render statistics: " << r.scene;
+    if (r.frame) out << ", frame " << *r.frame;
+    if (r.frame || r.clock != 0) out << ", clock " << r.clock;
+    out << '\n' << "Image resolution " << r.width << " x " << r.height;
     if (r.region_width != r.width || r.region_height != r.height)
         out << " (rendered " << r.region_width << " x " << r.region_height << ")";
     out << '\n' << rule << '\n';
@@ -145,6 +146,8 @@ std::string stats_json(const RenderReport& r) {
     };
     nlohmann::ordered_json json = {
         {"scene", r.scene},
+        {"frame", r.frame ? nlohmann::ordered_json(*r.frame) : nullptr},
+        {"clock", r.clock},
         {"width", r.width},
         {"height", r.height},
         {"rendered_pixels", static_cast<uint64_t>(r.region_width) * static_cast<uint64_t>(r.region_height)},

@@ -14,6 +14,8 @@ namespace wsd::app {
 
 struct RenderReport {
     std::string scene;
+    std::optional<long long> frame;           // the frame of a --frames run (none for a still)
+    double clock = 0;                         // the scene's `clock`
     int width = 0, height = 0;                // the full image
     int region_width = 0, region_height = 0;  // the pixels rendered (a tile's size)
     int supersamples = 1;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
 #include "app_test_util.h"
 #include "render/image_io.h"
@@ -217,6 +218,30 @@ TEST_CASE("a frame whose --stats-json cannot be written leaves none of its outpu
     CHECK(run_wsd(dir, "render c.wsd --quiet --tile 1/2 --aov normal --stats-json /dev/full").status == 3);
     CHECK(sorted_files(dir) == std::vector<std::string>{"c.wsd"});
     CHECK(fs::exists("/dev/full"));  // a device written in place is never removed
+}
+
+TEST_CASE("each frame's statistics name the frame and its clock", "[frames][stats]") {
+    TempDir dir;
+    write_file(dir / "c.wsd", clock_scene);
+    const RunResult r =
+        run_wsd(dir, "render c.wsd --quiet --frames 2-6 --stats --stats-json 'j-#.json' -o 'f-#.pfm'");
+    REQUIRE(r.status == 0);
+    for (int n = 2; n <= 6; ++n) {
+        INFO("frame " << n);
+        std::string name = "j-";
+        name.append(std::to_string(n)).append(".json");
+        const auto json = nlohmann::json::parse(read_file(dir / name), nullptr, false);
+        REQUIRE_FALSE(json.is_discarded());
+        CHECK(json["frame"] == n);
+        CHECK(json["clock"] == (n - 2) / 4.0);
+    }
+    CHECK(r.out.find("Render statistics: c.wsd, frame 3, clock 0.25\n") != std::string::npos);
+    // A still has no frame; its clock is 0 or --clock's.
+    REQUIRE(run_wsd(dir, "render c.wsd --quiet --clock 0.75 --stats-json s.json -o s.pfm").status == 0);
+    const auto still = nlohmann::json::parse(read_file(dir / "s.json"), nullptr, false);
+    REQUIRE_FALSE(still.is_discarded());
+    CHECK(still["frame"].is_null());
+    CHECK(still["clock"] == 0.75);
 }
 
 TEST_CASE("a warning that every frame gives is printed once per run", "[frames][warnings]") {
