@@ -125,6 +125,8 @@ int run_frames(const FramePlan& plan, const std::function<int(const FrameJob&)>&
             std::cerr << "wsd: stopped at frame " << n << "; ";
             if (n == plan.from)
                 std::cerr << "no frame was written\n";
+            else if (n - 1 == plan.from)
+                std::cerr << "frame " << plan.from << " was written\n";
             else
                 std::cerr << "frames " << plan.from << " to " << n - 1 << " were written\n";
             return status;
