@@ -239,8 +239,8 @@ bool writes_tile_file(const TileRequest& tile, const std::string& output) {
 }
 
 // Checks what can be checked of a frame's outputs before it renders: the image format, the
-// directories the image and --stats-json go to, and that --stats-json names none of the files
-// the image is written to (its auxiliary images' included). An exit status.
+// directories the image and --stats-json go to, and that --stats-json names neither the scene nor
+// any of the files the image is written to (its auxiliary images' included). An exit status.
 int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const AovSelection& aovs,
                         const FrameJob& job) {
     std::string error;
@@ -250,6 +250,9 @@ int check_frame_outputs(const RenderArgs& args, const TileRequest& tile, const A
     const std::string stats_path =
         job.animated ? frame_path(args.stats_json, job.time.frame) : args.stats_json;
     if (stats_path.empty()) return exit_code::ok;
+    // The scene is read before the first frame renders: a --stats-json naming it would replace it.
+    if (args.scene != "-" && same_path(stats_path, args.scene))
+        return fail(exit_code::usage, "--stats-json names the scene '" + args.scene + "'");
     if (!output_directory_exists(stats_path, error)) return fail(exit_code::io, error);
     const std::vector<std::string> written =
         writes_tile_file(tile, output) ? std::vector<std::string>{output} : output_paths(output, aovs);

@@ -130,6 +130,19 @@ TEST_CASE("--stats-json that would overwrite the image, or names a directory, fa
     CHECK(r.status == 3);
     CHECK(r.err.find("it is a directory") != std::string::npos);
     CHECK_FALSE(fs::exists(dir / "a.png"));
+    // Nor may it replace the scene, for a still or for any frame.
+    const std::string scene = read_file(dir / "s.wsd");
+    r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats-json ./s.wsd");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--stats-json names the scene 's.wsd'") != std::string::npos);
+    CHECK(read_file(dir / "s.wsd") == scene);
+    CHECK_FALSE(fs::exists(dir / "a.png"));
+    write_file(dir / "s1.wsd", scene);
+    r = run_wsd(dir, "render s1.wsd -o 'a-#.png' --frames 0-1 --quiet --stats-json 's#.wsd'");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--stats-json names the scene 's1.wsd'") != std::string::npos);
+    CHECK(read_file(dir / "s1.wsd") == scene);
+    CHECK_FALSE(fs::exists(dir / "a-1.png"));
 }
 
 TEST_CASE("--stats-json that would overwrite an auxiliary image fails before rendering", "[render][aov]") {
