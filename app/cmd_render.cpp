@@ -2,12 +2,16 @@
 // whole image or one tile/region with progress and cancellation, and writes the image (or tile
 // file) atomically, then the statistics — once for a still, once per frame for --frames
 // (app/frames.h). Usage errors are found before any rendering starts.
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
+#include <optional>
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 #include "app/commands.h"
 #include "app/exit_codes.h"
@@ -182,7 +186,9 @@ struct RenderRun {
     CancelOnSignal signals;
     render::ImageCache images;
     std::set<std::string> warnings_shown;  // each scene warning is printed once per run
-    bool defines_checked = false;          // unread --define warnings come after the first frame only
+    // The --define names that no frame so far read: named after the frame for one frame (or a
+    // still), after the run for several (a later frame may read what the first did not).
+    std::optional<std::vector<std::string>> unread_defines;
 };
 
 // Loads the frame's scene with the command line's defines and overrides: an exit status.
@@ -220,8 +226,15 @@ int load_for_render(const RenderArgs& args, RenderRun& run, const FrameJob& job,
                                           std::to_string(size.height) + " exceeds 2^28 pixels");
     }
     if (!loaded->scene) throw std::logic_error("load_scene built no scene");
-    if (!run.defines_checked) warn_unread_defines(params, args.input);
-    run.defines_checked = true;
+    std::vector<std::string> unread = params.unread();
+    if (run.unread_defines) {
+        std::vector<std::string> still_unread;
+        std::set_intersection(run.unread_defines->begin(), run.unread_defines->end(), unread.begin(),
+                              unread.end(), std::back_inserter(still_unread));
+        unread = std::move(still_unread);
+    }
+    run.unread_defines = std::move(unread);
+    if (job.count == 1) warn_unread_defines(*run.unread_defines, args.input);
     return exit_code::ok;
 }
 
@@ -445,8 +458,10 @@ int run_render(const RenderArgs& args) {
         return status;
     RenderRun run;
     if (!read_input_file(args.scene, run.text, error)) return fail(exit_code::io, error);
-    return run_frames(plan,
-                      [&](const FrameJob& frame) { return render_frame(args, run, tile, aovs, frame); });
+    const int status =
+        run_frames(plan, [&](const FrameJob& frame) { return render_frame(args, run, tile, aovs, frame); });
+    if (plan.count() > 1 && run.unread_defines) warn_unread_defines(*run.unread_defines, args.input);
+    return status;
 }
 
 }  // namespace wsd::app

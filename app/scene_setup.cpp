@@ -62,17 +62,30 @@ std::string defines_fingerprint(const std::vector<std::string>& defines) {
     return out;
 }
 
-std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input) {
+namespace {
+
+std::vector<std::string> unread_name_warnings(const std::vector<std::string>& unread,
+                                              const SceneInputArgs& input) {
     std::vector<std::string> messages;
     if (input.no_warnings) return messages;
-    for (const std::string& name : params.unread())
+    for (const std::string& name : unread)
         messages.push_back("--define " + name + " was not used: no param(\"" + name +
                            "\", ...) call read it");
     return messages;
 }
 
+}  // namespace
+
+std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input) {
+    return unread_name_warnings(params.unread(), input);
+}
+
 void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input) {
-    for (const std::string& message : unread_define_warnings(params, input)) warn(message);
+    warn_unread_defines(params.unread(), input);
+}
+
+void warn_unread_defines(const std::vector<std::string>& unread, const SceneInputArgs& input) {
+    for (const std::string& message : unread_name_warnings(unread, input)) warn(message);
 }
 
 namespace {

@@ -52,6 +52,8 @@ int evaluate_defines(const std::vector<std::string>& defines, lang::ParamTable& 
 // --no-warnings). The messages, and the function that prints them on stderr.
 std::vector<std::string> unread_define_warnings(const lang::ParamTable& params, const SceneInputArgs& input);
 void warn_unread_defines(const lang::ParamTable& params, const SceneInputArgs& input);
+// The same for the names that no frame of a run read.
+void warn_unread_defines(const std::vector<std::string>& unread, const SceneInputArgs& input);
 
 // The name used in messages for a scene read from stdin ("-").
 std::string display_path(const std::string& path);

@@ -258,6 +258,19 @@ TEST_CASE("a warning that every frame gives is printed once per run", "[frames][
     CHECK(count("--define unused was not used") == 1);
 }
 
+TEST_CASE("a --define that a later frame reads is used", "[frames][define]") {
+    TempDir dir;
+    write_file(dir / "p.wsd", std::string(clock_scene) + "if frame == 2 { let r = param(\"r\", 1) }\n");
+    RunResult r = run_wsd(dir, "render p.wsd --quiet --frames 1-3 -o 'f-#.pfm' -D r=3 -D s=4");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.find("--define r was not used") == std::string::npos);
+    CHECK(r.err.find("--define s was not used") != std::string::npos);
+    // One frame that does not read it: it was not used.
+    r = run_wsd(dir, "render p.wsd --quiet --frames 1-3 --frame 1 -o 'g-#.pfm' -D r=3");
+    REQUIRE(r.status == 0);
+    CHECK(r.err.find("--define r was not used") != std::string::npos);
+}
+
 TEST_CASE("an interrupted run keeps the frames written before it, and nothing partial", "[frames][signal]") {
     TempDir dir;
     // Frame 0 is 8×8; frame 1 is far too much work to finish within the timeout.
