@@ -338,6 +338,13 @@ std::string_view spacing(std::string_view text, const Element& a, const Element&
     return space.empty() && !lexes_apart(text, a, b) ? " " : space;
 }
 
+// Whether element `e` goes on the line of `p` before it however they were written: `{`, `else`,
+// `,`, `.`, a call's `(` and an index's `[` join the previous line.
+bool joins_previous_line(const Element& p, const Element& e) {
+    return e.is(TokenKind::LBrace) || e.is(TokenKind::Else) || e.is(TokenKind::Comma) ||
+           e.is(TokenKind::Dot) || (e.is(TokenKind::LParen) && (p.role & callee)) || (e.role & index_open);
+}
+
 // Appends `text` with its CRLF and lone CR line breaks written as LF (a block comment's lines).
 void append_lf(std::string& out, std::string_view text) {
     for (size_t i = 0; i < text.size(); ++i) {
@@ -427,11 +434,13 @@ std::string Layout::run() {
     const auto content_indent = [&] { return frames.empty() ? 0u : frames.back().indent; };
     const auto multiline_body = [&] { return frames.empty() || frames.back().multiline; };
     // The indent of a line that comment k starts: that of the items around it, or, when a token
-    // follows the comment on its line (`1 +\n /* c */ 2`), the indent the line would have without
-    // the comment.
+    // follows the comment on its line (`1 +\n /* c */ 2`, or one that joins it from the next line,
+    // `xs\n /* c */\n [0]`), the indent the line would have without the comment.
     const auto comment_line_indent = [&](size_t k) {
         size_t j = k;
-        while (j + 1 < el_.size() && el_[j].comment && !el_[j].line_comment && breaks_[j + 1] == 0) ++j;
+        while (j + 1 < el_.size() && el_[j].comment && !el_[j].line_comment &&
+               (breaks_[j + 1] == 0 || joins_previous_line(el_[j], el_[j + 1])))
+            ++j;
         const Element& t = el_[j];
         if (t.comment || (t.role & item_start) || t.is(TokenKind::RBrace) || t.is(TokenKind::LBrace) ||
             t.is(TokenKind::Else))
@@ -457,10 +466,7 @@ std::string Layout::run() {
                 const bool forced = p.line_comment || ((e.role & item_start) && multiline_body()) ||
                                     (p.is(TokenKind::LBrace) && multiline_body()) ||
                                     (e.is(TokenKind::RBrace) && multiline_body());
-                const bool joined = e.is(TokenKind::LBrace) || e.is(TokenKind::Else) ||
-                                    e.is(TokenKind::Comma) || e.is(TokenKind::Dot) ||
-                                    (e.is(TokenKind::LParen) && (p.role & callee)) || (e.role & index_open);
-                newline = forced || (!joined && gap > 0);
+                newline = forced || (!joins_previous_line(p, e) && gap > 0);
                 if (e.closes() && !frames.empty())
                     indent = frames.back().opener_indent;
                 else if ((e.role & item_start) || (!frames.empty() && !frames.back().brace))

@@ -277,8 +277,16 @@ TEST_CASE("fmt style: if/else, continuation lines, blank lines", "[format]") {
           "sphere {\n    radius 1 +\n        /* c */ /* d */ 2\n}\n");
     CHECK(fmt("let xs = [\n1,\n /* two */ 2\n]") == "let xs = [\n    1,\n    /* two */ 2\n]\n");
     CHECK(fmt("sphere {\n /* r */ radius 1\n}") == "sphere {\n    /* r */\n    radius 1\n}\n");
-    for (const char* input : {"let e = 1 +\n  /* c */ 2", "let a = f(1,\n /* c */ g(2,\n /* d */ 3))",
-                              "if a { f(1) }\n/* c */ else { f(2) }"})
+    // A token that joins the line before it (`[`, `.`, `,`) after a block comment on a line of its
+    // own goes on the comment's line, indented as that line would be without the comment.
+    CHECK(fmt("let g = xs\n/* c */\n[0]") == "let g = xs\n    /* c */ [0]\n");
+    CHECK(fmt("let s = v\n/* c */\n.x") == "let s = v\n    /* c */ .x\n");
+    for (const char* input :
+         {"let e = 1 +\n  /* c */ 2", "let a = f(1,\n /* c */ g(2,\n /* d */ 3))",
+          "if a { f(1) }\n/* c */ else { f(2) }", "let g = xs\n/* c */\n[0]",
+          "let s = xs[0]\n/* c */ /* d */\n.x", "sphere\n/* c */\n{ radius 1 }",
+          "if a { f(1) }\n/* c */\nelse { f(2) }", "let a = <1\n/* c */\n, 2>",
+          "sphere {\n    colors <0.8,\n/* c */\n0.8, 0.8>\n/* d */\n, <0.3, 0.3, 0.35>\n}"})
         check_promises(input, input);
     CHECK(fmt("group {\n\n  sphere { radius 1 }\n\n}\n") == "group {\n    sphere { radius 1 }\n}\n");
 }
