@@ -19,6 +19,35 @@ const std::vector<std::string> statement_words = {
     "box",   "triangle", "plane",        "mesh",       "cylinder", "cone",   "torus", "disc",
     "group", "union",    "intersection", "difference", "object",   "fn",     "return"};
 
+// The offset of the first character at or after `p` that is neither whitespace nor in a comment,
+// as the lexer skips them (block comments nest; an unterminated one runs to the end).
+size_t skip_blanks(std::string_view text, size_t p) {
+    while (p < text.size()) {
+        const char c = text[p];
+        if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+            ++p;
+        } else if (text.compare(p, 2, "//") == 0) {
+            while (p < text.size() && text[p] != '\n' && text[p] != '\r') ++p;
+        } else if (text.compare(p, 2, "/*") == 0) {
+            int depth = 0;
+            while (p < text.size()) {
+                if (text.compare(p, 2, "/*") == 0) {
+                    ++depth;
+                    p += 2;
+                } else if (text.compare(p, 2, "*/") == 0) {
+                    p += 2;
+                    if (--depth == 0) break;
+                } else {
+                    ++p;
+                }
+            }
+        } else {
+            break;
+        }
+    }
+    return p;
+}
+
 }  // namespace
 
 Diagnostic* Parser::error(Span span, std::string message) {
@@ -165,10 +194,7 @@ Stmt* Parser::parse_statement() {
         std::string help;
         if (check(TokenKind::Ident)) {
             const std::string word(lexeme(tok_));
-            size_t p = tok_.end;
-            while (p < text_.size() &&
-                   (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\r' || text_[p] == '\n'))
-                ++p;
+            const size_t p = skip_blanks(text_, tok_.end);
             // A call, or something called that is not a name (`fs[0](2)`, reported there).
             if (p < text_.size() && (text_[p] == '(' || text_[p] == '[' || text_[p] == '.'))
                 return parse_call_statement();

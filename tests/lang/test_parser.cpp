@@ -362,6 +362,19 @@ TEST_CASE("statements", "[parser]") {
     CHECK(s[7]->span.end == p->sources.file(0).text.size());
 }
 
+TEST_CASE("comments between a call statement's name and its '(' are whitespace", "[parser]") {
+    for (const char* text : {"f/*c*/()", "f /* a /* nested */ b */ (1)", "f // c\n(2)", "f\n/* c */\n(3)"}) {
+        INFO(text);
+        const auto p = parse_text(text);
+        CHECK(p->errors().empty());
+        REQUIRE(p->program.statements.size() == 1);
+        CHECK(p->program.statements[0]->kind == StmtKind::Call);
+    }
+    const auto assign = parse_text("x /* c */ = 3");
+    REQUIRE(assign->diags.all().size() == 1);
+    CHECK(assign->diags.all()[0].help == std::vector<std::string>{"to bind a name, write 'let x = ...'"});
+}
+
 TEST_CASE("syntax errors, with recovery at the next statement", "[parser]") {
     const auto p = parse_text(
         "sphere { center <0, 0, 0>  radius }\n"  // 1
