@@ -40,8 +40,8 @@ lang::IncludeReader noting_reader(std::vector<std::string>& tried) {
     };
 }
 
-// Every file the load read (the scene and its includes), tried to read (`tried`) or names
-// (textures, OBJ meshes), once each.
+// Every file the load read (the scene and its includes), tried to read (`tried`: includes and mesh
+// files, found or not) or names (textures, OBJ meshes), once each.
 std::vector<std::string> named_files(const std::string& scene, const lang::SourceManager& sources,
                                      const std::vector<std::string>& tried, const lang::LoadedScene* loaded) {
     std::vector<std::string> files{scene};
@@ -177,6 +177,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
     options.cancel = &cancel_;  // a save or Ctrl-C abandons a long evaluation or photon map
     std::vector<std::string> tried;
     options.read_include = noting_reader(tried);
+    options.mesh_files = &tried;  // a broken or missing mesh fails the load: its file is watched
     options.adjust = [&](render::SceneSpec& spec) {
         full = spec.settings;
         lights = spec.lights;
@@ -203,6 +204,7 @@ void PreviewRenderer::render_generation(uint64_t generation) {
         unbuilt.params = params_;
         unbuilt.cancel = &cancel_;
         unbuilt.read_include = noting_reader(tried);
+        unbuilt.mesh_files = &tried;
         lang::SourceManager unbuilt_sources;
         lang::Diagnostics unbuilt_diags;
         std::optional<lang::LoadedScene> described;

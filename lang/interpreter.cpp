@@ -69,6 +69,7 @@ Interpreter::Interpreter(SourceManager& sources, Diagnostics& diags, SceneBuilde
 
 BlockContext Interpreter::context(bool default_material) {
     BlockContext ctx{sources_, diags_, chain_, {}, &obj_cache_};
+    ctx.mesh_files = mesh_files_;
     if (!calls_.empty()) ctx.call = calls_.front()->span;
     if (default_material)
         if (const Binding* b = find("default_material")) ctx.default_material = {&b->value, b->span};

@@ -56,6 +56,8 @@ public:
     void set_params(const ParamTable* params) { params_ = params; }
     // Where included files are read from (an editor's unsaved text); the file system when unset.
     void set_file_reader(const IncludeReader* reader) { reader_ = reader; }
+    // Where the path of each mesh file read is added, read or not; none when unset.
+    void set_mesh_files(std::vector<std::string>* files) { mesh_files_ = files; }
     // The values of the built-in constants `clock` and `frame` (a still's 0 and 0 by default).
     void set_time(const AnimationTime& time) { time_ = time; }
     // A flag that stops the run at the next loop iteration or call once it holds true (a signal
@@ -240,6 +242,7 @@ private:
     std::vector<std::unique_ptr<Program>> programs_;      // included ASTs: bindings point into them
     std::unordered_map<std::string, const Program*> parsed_includes_;  // path as resolved -> its AST
     ObjCache obj_cache_;
+    std::vector<std::string>* mesh_files_ = nullptr;
     std::vector<TexturePtr> named_images_;
     std::unordered_set<std::string> named_image_paths_;
     std::vector<Span> value_spans_;  // eval_block's scratch: the value spans of the item it admits

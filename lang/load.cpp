@@ -86,6 +86,7 @@ std::optional<LoadedScene> load_scene(const std::string& path, std::string text,
             interpreter.set_params(options.params);
             interpreter.set_time(options.time);
             interpreter.set_file_reader(&options.read_include);
+            interpreter.set_mesh_files(options.mesh_files);
             interpreter.set_cancel(options.cancel);
             interpreter.run(program);
             if (interpreter.cancelled()) return std::nullopt;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "lang/diagnostics.h"
 #include "lang/params.h"
@@ -43,6 +44,9 @@ struct LoadOptions {
     AnimationTime time;                              // `clock` and `frame` (0 and 0: a still)
     render::ImageCache* images = nullptr;            // texture images kept across loads (frames)
     IncludeReader read_include;                      // empty: included files are read from disk
+    // Set: the path of each mesh file the scene reads is added to it, also when the file is
+    // missing or broken (what a preview watches to see the fix).
+    std::vector<std::string>* mesh_files = nullptr;
     // Set: the evaluation stops at the next loop iteration or call once it holds true (a signal),
     // and so does shooting caustic photons; load_scene then returns no scene and reports nothing.
     const std::atomic<bool>* cancel = nullptr;

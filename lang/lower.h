@@ -62,6 +62,7 @@ struct BlockContext {
     IncludeChain chain;
     DefaultMaterial default_material = {};
     ObjCache* obj_cache = nullptr;
+    std::vector<std::string>* mesh_files = nullptr;  // set: each mesh file's path is added, read or not
     // An object written as a value or in a group or CSG body may take its material from what
     // encloses it: without one of its own it lowers with a null material instead of an error.
     bool material_optional = false;

@@ -174,6 +174,7 @@ bool lower_file(BlockReader& r, BlockContext& ctx, LoweredObject& o) {
         return false;
     }
     std::string path = resolve_path(ctx.sources, at.file, name->string());
+    if (ctx.mesh_files) ctx.mesh_files->push_back(path);
     const std::string key = canonical_path(path);
     std::shared_ptr<const render::MeshData> mesh;
     if (ctx.obj_cache) {

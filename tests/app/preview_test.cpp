@@ -187,6 +187,43 @@ TEST_CASE("a preview of a scene whose texture is missing watches the texture", "
     loop.join();
 }
 
+TEST_CASE("a preview of a scene whose mesh file is missing or broken watches the mesh file", "[preview]") {
+    TempDir dir;
+    const std::string scene = dir / "s.wsd";
+    write_file(scene, std::string(kScene) + "mesh { file \"models/m.obj\"  material { color <0, 1, 0> } }\n");
+    wsd::app::PreviewState state;
+    wsd::app::PreviewRenderer renderer(state, scene, 1);
+    std::thread loop([&] { renderer.run(); });
+    const std::vector<std::string> expected{scene, dir / "models/m.obj"};
+    std::vector<std::string> files;
+    bool whole = false;
+    // Missing: the load fails while lowering, before anything names the file but the mesh itself.
+    renderer.request();
+    wsd::app::PreviewSnapshot s =
+        wait_until(state, [](const auto& x) { return x.generation == 1 && x.phase == "error"; });
+    CHECK(s.diagnostics.find("cannot read mesh file") != std::string::npos);
+    CHECK(renderer.take_watch_list(files, whole));
+    CHECK(files == expected);
+    CHECK(whole);
+    // Broken: the same.
+    fs::create_directories(dir / "models");
+    write_file(dir / "models/m.obj", "v 0 0 0\nf 1 2 3\n");
+    renderer.request();
+    s = wait_until(state, [](const auto& x) { return x.generation == 2 && x.phase == "error"; });
+    CHECK(s.diagnostics.find("out of range") != std::string::npos);
+    CHECK_FALSE(renderer.take_watch_list(files, whole));  // unchanged: the mesh file is still watched
+    // Fixed: the image comes back, the mesh still watched.
+    write_file(dir / "models/m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    renderer.request();
+    s = wait_until(state, [](const auto& x) { return x.generation == 3 && x.phase == "done"; });
+    CHECK(s.diagnostics.empty());
+    CHECK(renderer.take_watch_list(files, whole));
+    CHECK(files == expected);
+    CHECK_FALSE(whole);
+    renderer.stop();
+    loop.join();
+}
+
 TEST_CASE("preview: an empty host and a scene that is not a regular file are refused at once", "[preview]") {
     TempDir dir;
     write_file(dir / "s.wsd", kScene);
