@@ -139,6 +139,8 @@ TEST_CASE("a loop that makes more than the memory it may use is stopped while th
     const RunResult fits = run_wsd(dir, "check small.wsd", "WSD_MAX_MEMORY=64M");
     INFO(fits.err);
     CHECK(fits.status == 0);
+    // Under the sanitizers freed memory is held back (ASan's quarantine), and counts as taken.
+    if (const char* s = std::getenv("WSD_SANITIZED"); s && std::string(s) == "1") return;
     write_file(dir / "steps.wsd",
                "camera { position <0, 0, -3>  look_at <0, 0, 0> }\nlight point { position <2, 3, -4> }\n"
                "for i in 0 .. 200000 { let t = [i, i + 1, i + 2] }\n"
