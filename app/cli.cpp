@@ -239,7 +239,9 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args, RenderOptionRefs& 
     cmd->add_flag("--general", args.general,
                   "use the general integrator with every effect enabled (same image, slower; for checking)");
     cmd->add_flag("--stats", args.stats, "print render statistics at the end");
-    cmd->add_option("--stats-json", args.stats_json, "write render statistics as JSON")->check(non_empty);
+    cmd->add_option("--stats-json", args.stats_json, "write render statistics as JSON; - = stdout")
+        ->check(non_empty)
+        ->transform([](std::string path) { return path == "-" ? std::string("/dev/stdout") : path; });
     cmd->add_flag("-q,--quiet", args.quiet, "no progress output");
     cmd->add_flag("--adaptive-lights", args.adaptive_lights, "adaptive sampling on every area light");
     cmd->add_option("--tile", args.tile, "render tile I of N (rows), e.g. 3/8; output a .pfm tile")

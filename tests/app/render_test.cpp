@@ -116,6 +116,12 @@ TEST_CASE("--stats-json writes into a pipe or a device in place, never replacing
     CHECK(table != std::string::npos);
     CHECK(json != std::string::npos);
     CHECK(table < json);
+    // `-` is standard output too, as /dev/stdout is: no file named '-' is written.
+    r = run_wsd(dir, "render s.wsd -o a.png --quiet --stats --stats-json -");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("Render statistics") < r.out.find("\"camera_rays\": 1024,"));
+    CHECK(r.out.find("\"camera_rays\": 1024,") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "-"));
 }
 
 TEST_CASE("--stats-json that would overwrite the image, or names a directory, fails before rendering",
