@@ -195,9 +195,10 @@ json diagnostics(const Document& doc, Encoding enc, const FileReader& open_text,
             }
             at = site;
         }
-        for (const Note& n : d.notes)
-            if (n.span.file < sources.size())
-                info.push_back(related(sources, doc.uri, n.span, n.message, enc));
+        for (const std::vector<Note>* notes : {&d.notes, &d.calls})
+            for (const Note& n : *notes)
+                if (n.span.file < sources.size())
+                    info.push_back(related(sources, doc.uri, n.span, n.message, enc));
         for (const std::string& h : d.help) message += "\nhelp: " + h;
         json diag = {{"range", range_json(index, at.begin, at.end, enc)},
                      {"severity", severity_code(d.severity)},

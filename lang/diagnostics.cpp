@@ -9,6 +9,18 @@
 
 namespace wsd::lang {
 
+void Diagnostics::note_call(size_t first, const Note& call) {
+    for (size_t i = first; i < diags_.size(); ++i) {
+        Diagnostic& d = diags_[i];
+        if (d.shows_calls || d.calls.size() >= kMaxCallNotes) continue;
+        // A note of the diagnostic's own may name the call already ("added by this call").
+        const auto same = [&call](const Note& n) {
+            return n.span.file == call.span.file && n.span.begin == call.span.begin;
+        };
+        if (std::none_of(d.notes.begin(), d.notes.end(), same)) d.calls.push_back(call);
+    }
+}
+
 Diagnostic& Diagnostics::error(Span span, std::string message) {
     ++errors_;
     if (errors_ > max_errors) {
@@ -42,6 +54,7 @@ void Diagnostics::pop_include() {
 
 std::vector<Note> notes_with_includes(const Diagnostic& diag) {
     std::vector<Note> notes = diag.notes;
+    notes.insert(notes.end(), diag.calls.begin(), diag.calls.end());
     for (const Span& site : diag.include_chain) notes.push_back({site, "in file included from here"});
     return notes;
 }

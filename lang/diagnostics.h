@@ -27,6 +27,11 @@ struct Diagnostic {
     // The `include` sites that led to the file of `span`, innermost first (filled by the sink
     // from push_include); printed after the notes as "in file included from here" notes.
     std::vector<Span> include_chain;
+    // The function calls that led to `span`, innermost first (added by the interpreter as each
+    // call returns); printed after the notes, before the include chain. Empty when the
+    // diagnostic shows a chain of calls itself.
+    std::vector<Note> calls;
+    bool shows_calls = false;
 };
 
 class Diagnostics {
@@ -41,6 +46,10 @@ public:
     bool has_errors() const { return errors_ > 0; }
     bool too_many() const { return errors_ >= max_errors; }
     const std::vector<Diagnostic>& all() const { return diags_; }
+    // Notes `call` on every diagnostic from all()[first] on, up to kMaxCallNotes a diagnostic
+    // (the innermost calls, where a deep recursion went wrong).
+    static constexpr size_t kMaxCallNotes = 8;
+    void note_call(size_t first, const Note& call);
     // Include chain: notes appended to every diagnostic reported while a file is being included.
     void push_include(Span include_site);
     void pop_include();

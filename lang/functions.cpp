@@ -104,6 +104,7 @@ bool Interpreter::check_arity(const FunctionValue& fn, const CallExpr& call) {
 void Interpreter::call_depth_error(const CallExpr& call) {
     Diagnostic& d = diags_.error(call.span, "calls nested too deep (the limit is " +
                                                 std::to_string(limits_.call_depth) + " nested calls)");
+    d.shows_calls = true;
     constexpr size_t kShown = 3;
     const size_t n = calls_.size();
     for (size_t i = 0; i < n; ++i) {
@@ -157,6 +158,7 @@ std::optional<Value> Interpreter::call_function(const FunctionPtr& fn, const Cal
         return std::nullopt;
     }
     const size_t errors_before = diags_.error_count();
+    const size_t diagnostics_before = diags_.all().size();
 
     // Into the function: its scope, its file's include chain, a fresh nesting count.
     ScopePtr caller_scope = std::move(scope_);
@@ -184,6 +186,8 @@ std::optional<Value> Interpreter::call_function(const FunctionPtr& fn, const Cal
     depth_ = caller_depth;
     diags_.exchange_include_stack(std::move(caller_includes));
     chain_ = std::move(caller_chain);
+    // What went wrong inside says which call it was in.
+    diags_.note_call(diagnostics_before, {call.span, "in this call to " + quoted(decl.name)});
 
     if (!returned) {
         if (in_expression && !stopped() && diags_.error_count() == errors_before) {
