@@ -32,11 +32,11 @@
 // (RTC_BUILD_QUALITY_MEDIUM, no RTC_SCENE_FLAG_ROBUST; its own choice of ISA at run time).
 //
 // Prints human-readable lines and, for bench/performance.sh, one `row|...` line per query and
-// one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [--baseline] [SCENE...]
-// (quick: meshes of a hundredth the size, one pass, and no mesh10m unless named; robust: Embree
-// in its robust mode, RTC_SCENE_FLAG_ROBUST; baseline: wsd's walks test nodes, triangles and
-// packets with baseline x86-64 instructions even where the CPU has AVX; SCENE: cornell, mesh1m,
-// mesh10m).
+// one `build|...` line per scene. Usage: bench_embree [--quick] [--robust] [--baseline]
+// [--no-avx512] [SCENE...] (quick: meshes of a hundredth the size, one pass, and no mesh10m unless
+// named; robust: Embree in its robust mode, RTC_SCENE_FLAG_ROBUST; baseline: wsd's walks test
+// nodes, triangles and packets with baseline x86-64 instructions even where the CPU has AVX;
+// no-avx512: packets keep to AVX where the CPU has AVX-512; SCENE: cornell, mesh1m, mesh10m).
 #include <embree3/rtcore.h>
 #include <sys/resource.h>
 
@@ -590,11 +590,14 @@ int main(int argc, char** argv) {
             g_robust = true;
         else if (a == "--baseline")
             set_avx_walk(false);
+        else if (a == "--no-avx512")
+            set_avx512_packets(false);
         else if (a == "cornell" || a == "mesh1m" || a == "mesh10m")
             only.push_back(a);
         else {
             std::printf(
-                "usage: bench_embree [--quick] [--robust] [--baseline] [cornell|mesh1m|mesh10m]...\n");
+                "usage: bench_embree [--quick] [--robust] [--baseline] [--no-avx512] "
+                "[cornell|mesh1m|mesh10m]...\n");
             return 2;
         }
     }
@@ -606,7 +609,10 @@ int main(int argc, char** argv) {
         "Embree %d.%d.%d, %s mode, one tracing thread; t tolerance %.0e, edge tolerance %.0e (of the float "
         "scale); wsd's walks: %s\n",
         RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, g_robust ? "robust" : "default",
-        kTRelTolerance, kEdgeTolerance, avx_walk() ? "AVX" : "baseline x86-64");
+        kTRelTolerance, kEdgeTolerance,
+        avx512_packets() ? "AVX, AVX-512 packets"
+        : avx_walk()     ? "AVX"
+                         : "baseline x86-64");
     int status = 0;
     if (wanted("cornell")) status = run_scene(cornell_scene(), quick ? 1 : 5);
     if (status == 0 && wanted("mesh1m"))

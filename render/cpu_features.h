@@ -17,16 +17,29 @@ namespace wsd::render {
 // tests.
 #if defined(WSD_AVX_DISPATCH)
 extern bool g_avx_walk;
+extern bool g_avx512_packets;
 inline bool avx_walk() {
     return g_avx_walk;
 }
+// True when, on top of avx_walk(), packets test a triangle against eight rays at once and a
+// leaf's box against sixteen (render/geometry_packet.cpp): on CPUs with AVX-512 (AVX512F),
+// unless set_avx512_packets(false) said otherwise.
+inline bool avx512_packets() {
+    return g_avx_walk && g_avx512_packets;
+}
 #else
 inline bool avx_walk() {
+    return false;
+}
+inline bool avx512_packets() {
     return false;
 }
 #endif
 // Chooses the baseline (false) or the AVX tests (true, only where the CPU has AVX); returns
 // whether AVX is used now. For comparisons (tests, benchmarks); the results are the same.
 bool set_avx_walk(bool on);
+// Chooses whether packets use AVX-512 where the CPU has it (and avx_walk() holds); returns
+// whether they do now. For comparisons too; the results are the same.
+bool set_avx512_packets(bool on);
 
 }  // namespace wsd::render

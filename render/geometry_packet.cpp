@@ -4,7 +4,8 @@
 // children any ray may enter; at a leaf each ray's own slab test (RayBoxTest::hit's
 // arithmetic, lane by lane) picks the rays whose primitives are tested, with the single-ray
 // triangle test's operations (two rays at a time when the rays share their axes; on CPUs with
-// AVX four, and eight rays' leaf boxes and a node's eight children at once). Each ray gets
+// AVX four, and eight rays' leaf boxes and a node's eight children at once; with AVX-512 eight
+// rays a triangle and sixteen a leaf box). Each ray gets
 // exactly the hit intersect() returns: it enters every box intersect() would enter for it (the
 // bounds are conservative, its own test is the same, its limit never below its own), and the
 // closest hit with ties to the lowest id does not depend on the order primitives are tested in.
@@ -131,6 +132,27 @@ struct Packet {
         return in;
     }
 
+    // rays_in for all sixteen rays at once, for CPUs with AVX-512 (the same operations lane by
+    // lane; comparisons give the mask directly).
+    [[gnu::target("avx512f")]] uint32_t rays_in_avx512(const float* base, int i, const float* t_limit) const {
+        static_assert(Q == 4);
+        __m512 tn = _mm512_setzero_ps(), tf = _mm512_loadu_ps(t_limit);
+        for (int a = 0; a < 3; ++a) {
+            const __m512 lo = _mm512_set1_ps(base[near_off[a] + i]),
+                         hi = _mm512_set1_ps(base[far_off[a] + i]);
+            const __m512 iv = _mm512_loadu_ps(reinterpret_cast<const float*>(&inv[a][0]));
+            const __m512 t0 = _mm512_mul_ps(
+                _mm512_sub_ps(lo, _mm512_loadu_ps(reinterpret_cast<const float*>(&o_near[a][0]))), iv);
+            const __m512 t1 = _mm512_mul_ps(
+                _mm512_sub_ps(hi, _mm512_loadu_ps(reinterpret_cast<const float*>(&o_far[a][0]))), iv);
+            // _mm512_max_ps and _mm512_min_ps through an all-lanes mask: GCC 12's header warns
+            // about an uninitialized operand in the unmasked forms. The same instructions.
+            tn = _mm512_mask_max_ps(t0, 0xffff, t0, tn);
+            tf = _mm512_mask_min_ps(t1, 0xffff, t1, tf);
+        }
+        return _mm512_cmp_ps_mask(tn, _mm512_mul_ps(tf, _mm512_set1_ps(RayBoxTest::kWiden)), _CMP_LE_OQ);
+    }
+
     // bound for all eight children at once (the same operations lane by lane).
     [[gnu::target("avx"), gnu::always_inline]] int bound_avx(const BvhWideNode& node, float t_limit,
                                                              float* t_entry) const {
@@ -159,9 +181,10 @@ struct Packet {
 
 // The packet's BVH walk: nearest child first by the packet's interval test (bound); at a leaf,
 // each ray's own slab test picks the rays whose primitives are tested. Rays whose lane in `live`
-// is clear have limit −1 and enter nothing. kAvx: the walk built for AVX (walk_bvh_avx, only where
-// avx_walk() is true), whose triangle tests take four rays at a time.
-template <int Q, bool kAvx>
+// is clear have limit −1 and enter nothing. kLevel 1: the walk built for AVX (walk_bvh_avx, only
+// where avx_walk() is true), whose triangle tests take four rays at a time; 2: that walk with
+// AVX-512 leaves (avx512_packets()), eight rays a triangle test and sixteen a leaf's box.
+template <int Q, int kLevel>
 struct PacketClosestHit {
     static constexpr WalkOrder kOrder = WalkOrder::NearestFirst;
     static constexpr int kRays = 4 * Q;
@@ -255,7 +278,9 @@ struct PacketClosestHit {
         const int i = static_cast<int>(e.box & kLaneMask);
         uint32_t lanes;
 #if defined(WSD_AVX_DISPATCH)
-        if constexpr (kAvx && Q % 2 == 0)
+        if constexpr (kLevel == 2)
+            lanes = p.rays_in_avx512(base, i, lim);
+        else if constexpr (kLevel == 1 && Q % 2 == 0)
             lanes = p.rays_in_avx(base, i, lim);
         else
 #endif
@@ -274,7 +299,10 @@ struct PacketClosestHit {
                 const Vec3f &v0 = g.verts[tri.v[0]], &v1 = g.verts[tri.v[1]], &v2 = g.verts[tri.v[2]];
                 if (paired) {
 #if defined(WSD_AVX_DISPATCH)
-                    if constexpr (kAvx) {
+                    if constexpr (kLevel == 2) {
+                        test_triangle_rays<EdgesOct>(v0, v1, v2, lanes, tri.prim, slot);
+                        continue;
+                    } else if constexpr (kLevel == 1) {
                         test_triangle_rays<EdgesQuad>(v0, v1, v2, lanes, tri.prim, slot);
                         continue;
                     }
@@ -309,7 +337,17 @@ struct PacketClosestHit {
 template <int Q>
 [[gnu::target("avx"), gnu::flatten]] void closest_hit_packet_avx(const Impl& g, const Packet<Q>& p,
                                                                  Best* best, uint32_t live, Counters& c) {
-    PacketClosestHit<Q, true> q(g, p, best, live, c);
+    PacketClosestHit<Q, 1> q(g, p, best, live, c);
+    uint64_t boxes = 0;
+    walk_bvh_avx(g.nodes.data(), q, boxes);
+    c.boxes += boxes + 4 * q.leaf_boxes;
+}
+
+// The same with AVX-512 leaves, for packets of sixteen rays (Q = 4).
+[[gnu::target("avx512f"), gnu::flatten]] void closest_hit_packet_avx512(const Impl& g, const Packet<4>& p,
+                                                                        Best* best, uint32_t live,
+                                                                        Counters& c) {
+    PacketClosestHit<4, 2> q(g, p, best, live, c);
     uint64_t boxes = 0;
     walk_bvh_avx(g.nodes.data(), q, boxes);
     c.boxes += boxes + 4 * q.leaf_boxes;
@@ -319,9 +357,11 @@ template <int Q>
 template <int Q>
 void closest_hit_packet(const Impl& g, const Packet<Q>& p, Best* best, uint32_t live, Counters& c) {
 #if defined(WSD_AVX_DISPATCH)
+    if constexpr (Q == 4)
+        if (avx512_packets()) return closest_hit_packet_avx512(g, p, best, live, c);
     if (avx_walk()) return closest_hit_packet_avx(g, p, best, live, c);
 #endif
-    PacketClosestHit<Q, false> q(g, p, best, live, c);
+    PacketClosestHit<Q, 0> q(g, p, best, live, c);
     uint64_t boxes = 0;
     walk_bvh(g.nodes.data(), q, boxes);
     c.boxes += boxes + 4 * q.leaf_boxes;

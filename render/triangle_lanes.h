@@ -1,9 +1,9 @@
 // The watertight triangle test (render/shapes.h: triangle_edges, finish_edges, triangle_hit) for
 // several (ray, triangle) pairs at once, one per SIMD lane: two with SSE2 (EdgesPair), four with
-// AVX (EdgesQuad, chosen at run time). Each lane does the scalar code's operations with its
-// roundings: a lane rules out exactly the pairs the scalar test would, finishes (t, its error
-// bound, the hit) as the scalar test does, and hands on a lane whose edge function is zero, to be
-// recomputed, as the scalar test has it then. Internal to render/.
+// AVX (EdgesQuad) and eight with AVX-512 (EdgesOct, for packets), chosen at run time. Each lane does the
+// scalar code's operations with its roundings: a lane rules out exactly the pairs the scalar test would,
+// finishes (t, its error bound, the hit) as the scalar test does, and hands on a lane whose edge function is
+// zero, to be recomputed, as the scalar test has it then. Internal to render/.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +21,7 @@ namespace wsd::render {
 // What finish() leaves per lane: t, the determinant and the edge functions that give b1 and b2
 // (triangle_hit divides them only for a hit that is taken).
 struct LaneHits {
-    alignas(32) double t[4], det[4], e1[4], e2[4];
+    alignas(64) double t[8], det[8], e1[8], e2[8];
 };
 
 // triangle_edges' translation, shear and edge functions for two (ray, triangle) pairs at once,
@@ -277,6 +277,126 @@ struct EdgesQuad {
         alignas(32) double v[12][4];
         const __m256d all[12] = {pz[0], pz[1], pz[2], x[0], y[0], x[1], y[1], x[2], y[2], e0, e1, e2};
         for (int i = 0; i < 12; ++i) _mm256_store_pd(v[i], all[i]);
+        q.p0z = v[0][l], q.p1z = v[1][l], q.p2z = v[2][l];
+        q.x0 = v[3][l], q.y0 = v[4][l], q.x1 = v[5][l], q.y1 = v[6][l], q.x2 = v[7][l], q.y2 = v[8][l];
+        q.e0 = v[9][l], q.e1 = v[10][l], q.e2 = v[11][l];
+    }
+};
+
+// EdgesQuad for eight pairs at once, for CPUs with AVX-512 (avx512_packets() in
+// render/cpu_features.h): four rays against one triangle become eight, for packets. The same
+// operations and roundings lane by lane, no contraction: each lane's results are the scalar
+// code's bit for bit. Comparisons give masks directly.
+struct EdgesOct {
+    static constexpr uint32_t kWidth = 8;
+    __m512d pz[3], x[3], y[3], e0, e1, e2;
+
+    [[gnu::target("avx512f"), gnu::always_inline]] static __m512d kept(__m512d v) {
+        asm("" : "+v"(v));
+        return v;
+    }
+    [[gnu::target("avx512f")]] void compute(const __m512d (&vx)[3], const __m512d (&vy)[3],
+                                            const __m512d (&vz)[3], __m512d ox, __m512d oy, __m512d oz,
+                                            __m512d sx, __m512d sy) {
+        for (int i = 0; i < 3; ++i) {
+            pz[i] = _mm512_sub_pd(vz[i], oz);
+            x[i] = _mm512_add_pd(_mm512_sub_pd(vx[i], ox), kept(_mm512_mul_pd(sx, pz[i])));
+            y[i] = _mm512_add_pd(_mm512_sub_pd(vy[i], oy), kept(_mm512_mul_pd(sy, pz[i])));
+        }
+        e0 = _mm512_sub_pd(kept(_mm512_mul_pd(x[1], y[2])), kept(_mm512_mul_pd(y[1], x[2])));
+        e1 = _mm512_sub_pd(kept(_mm512_mul_pd(x[2], y[0])), kept(_mm512_mul_pd(y[2], x[0])));
+        e2 = _mm512_sub_pd(kept(_mm512_mul_pd(x[0], y[1])), kept(_mm512_mul_pd(y[0], x[1])));
+    }
+    // Eight rays against one triangle, as EdgesPair's (the arrays need no alignment).
+    struct Triangle {
+        __m512d vx[3], vy[3], vz[3];
+        [[gnu::target("avx512f")]] void set(const float* const (&v)[3], const int (&k)[3]) {
+            for (int i = 0; i < 3; ++i) {
+                vx[i] = _mm512_set1_pd(static_cast<double>(v[i][k[0]]));
+                vy[i] = _mm512_set1_pd(static_cast<double>(v[i][k[1]]));
+                vz[i] = _mm512_set1_pd(static_cast<double>(v[i][k[2]]));
+            }
+        }
+    };
+    [[gnu::target("avx512f")]] void compute(const Triangle& t, const double* ox, const double* oy,
+                                            const double* oz, const double* sx, const double* sy) {
+        compute(t.vx, t.vy, t.vz, _mm512_loadu_pd(ox), _mm512_loadu_pd(oy), _mm512_loadu_pd(oz),
+                _mm512_loadu_pd(sx), _mm512_loadu_pd(sy));
+    }
+    // EdgesPair::ruled_out, bit l for lane l.
+    [[gnu::target("avx512f")]] uint32_t ruled_out() const {
+        const __m512d zero = _mm512_setzero_pd();
+        const __mmask8 zeros = _mm512_cmp_pd_mask(e0, zero, _CMP_EQ_OQ) |
+                               _mm512_cmp_pd_mask(e1, zero, _CMP_EQ_OQ) |
+                               _mm512_cmp_pd_mask(e2, zero, _CMP_EQ_OQ);
+        const __mmask8 neg = _mm512_cmp_pd_mask(e0, zero, _CMP_LT_OQ) |
+                             _mm512_cmp_pd_mask(e1, zero, _CMP_LT_OQ) |
+                             _mm512_cmp_pd_mask(e2, zero, _CMP_LT_OQ);
+        const __mmask8 pos = _mm512_cmp_pd_mask(e0, zero, _CMP_GT_OQ) |
+                             _mm512_cmp_pd_mask(e1, zero, _CMP_GT_OQ) |
+                             _mm512_cmp_pd_mask(e2, zero, _CMP_GT_OQ);
+        return static_cast<uint32_t>(~zeros & neg & pos & 0xffu);
+    }
+    // EdgesPair::zero_lanes, bit l for lane l.
+    [[gnu::target("avx512f")]] uint32_t zero_lanes() const {
+        const __m512d zero = _mm512_setzero_pd();
+        return static_cast<uint32_t>(_mm512_cmp_pd_mask(e0, zero, _CMP_EQ_OQ) |
+                                     _mm512_cmp_pd_mask(e1, zero, _CMP_EQ_OQ) |
+                                     _mm512_cmp_pd_mask(e2, zero, _CMP_EQ_OQ));
+    }
+    // _mm512_max_pd(a, b), the same instruction: GCC 12's header fills an unused operand with an
+    // uninitialized value and warns about it, so every lane is taken through the mask instead.
+    [[gnu::target("avx512f"), gnu::always_inline]] static __m512d max(__m512d a, __m512d b) {
+        return _mm512_mask_max_pd(a, 0xff, a, b);
+    }
+    // |a|, |b|, |c| as std::max({a, b, c}) orders them (EdgesPair::finish).
+    [[gnu::target("avx512f"), gnu::always_inline]] static __m512d abs_max(__m512d a, __m512d b, __m512d c) {
+        const __m512d m = max(_mm512_abs_pd(b), _mm512_abs_pd(a));
+        return max(_mm512_abs_pd(c), m);
+    }
+    // EdgesPair::finish for eight lanes.
+    [[gnu::target("avx512f")]] uint32_t finish(const double* sz, LaneHits& out) const {
+        const __m512d s = _mm512_loadu_pd(sz), zero = _mm512_setzero_pd();
+        const __m512d det = _mm512_add_pd(_mm512_add_pd(e0, e1), e2);
+        const __m512d z0 = _mm512_mul_pd(s, pz[0]), z1 = _mm512_mul_pd(s, pz[1]),
+                      z2 = _mm512_mul_pd(s, pz[2]);
+        const __m512d t = _mm512_div_pd(
+            _mm512_add_pd(_mm512_add_pd(kept(_mm512_mul_pd(e0, z0)), kept(_mm512_mul_pd(e1, z1))),
+                          kept(_mm512_mul_pd(e2, z2))),
+            det);
+        const __m512d max_zt = abs_max(z0, z1, z2), max_pz = abs_max(pz[0], pz[1], pz[2]);
+        const __m512d max_xt = abs_max(x[0], x[1], x[2]), max_yt = abs_max(y[0], y[1], y[2]);
+        const __m512d max_e = abs_max(e0, e1, e2);
+        const __m512d delta_z = _mm512_mul_pd(_mm512_set1_pd(gamma(3)), max_zt);
+        const __m512d delta_x = _mm512_mul_pd(_mm512_set1_pd(gamma(5)), _mm512_add_pd(max_xt, max_pz));
+        const __m512d delta_y = _mm512_mul_pd(_mm512_set1_pd(gamma(5)), _mm512_add_pd(max_yt, max_pz));
+        const __m512d delta_e = _mm512_mul_pd(
+            _mm512_set1_pd(2.0),
+            _mm512_add_pd(
+                _mm512_add_pd(kept(_mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(gamma(2)), max_xt), max_yt)),
+                              kept(_mm512_mul_pd(delta_y, max_xt))),
+                kept(_mm512_mul_pd(delta_x, max_yt))));
+        const __m512d bound = _mm512_mul_pd(
+            _mm512_set1_pd(3.0),
+            _mm512_add_pd(
+                _mm512_add_pd(kept(_mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(gamma(3)), max_e), max_zt)),
+                              kept(_mm512_mul_pd(delta_e, max_zt))),
+                kept(_mm512_mul_pd(delta_z, max_e))));
+        const __m512d t_error = _mm512_div_pd(bound, _mm512_abs_pd(det));
+        _mm512_store_pd(out.t, t);
+        _mm512_store_pd(out.det, det);
+        _mm512_store_pd(out.e1, e1);
+        _mm512_store_pd(out.e2, e2);
+        const __mmask8 hit = _mm512_cmp_pd_mask(det, zero, _CMP_NEQ_UQ) &
+                             _mm512_cmp_pd_mask(t, zero, _CMP_GT_OQ) &
+                             _mm512_cmp_pd_mask(t, t_error, _CMP_NLE_UQ);
+        return static_cast<uint32_t>(hit);
+    }
+    // Lane l as triangle_edges leaves it before finish_edges.
+    [[gnu::target("avx512f")]] void lane(int l, TriangleEdges& q) const {
+        alignas(64) double v[12][8];
+        const __m512d all[12] = {pz[0], pz[1], pz[2], x[0], y[0], x[1], y[1], x[2], y[2], e0, e1, e2};
+        for (int i = 0; i < 12; ++i) _mm512_store_pd(v[i], all[i]);
         q.p0z = v[0][l], q.p1z = v[1][l], q.p2z = v[2][l];
         q.x0 = v[3][l], q.y0 = v[4][l], q.x1 = v[5][l], q.y1 = v[6][l], q.x2 = v[7][l], q.y2 = v[8][l];
         q.e0 = v[9][l], q.e1 = v[10][l], q.e2 = v[11][l];

@@ -112,20 +112,29 @@ TEST_CASE("packets from a camera inside a dense mesh, and through its silhouette
     CHECK(hits > ray_budget(20000) * 4);
 }
 
-TEST_CASE("packets under the walk built for AVX answer as under the baseline walk, bit for bit") {
+TEST_CASE(
+    "packets under the walks built for AVX and AVX-512 answer as under the baseline walk, bit for bit") {
     // The AVX walk tests eight children, eight rays' leaf boxes and four rays' triangle edges at
-    // once. On a CPU without AVX both runs take the baseline walk and agree trivially.
+    // once; with AVX-512 packets of sixteen test sixteen rays' leaf boxes and eight rays' triangle
+    // edges. On a CPU without them the runs take the baseline walk and agree trivially.
     const bool had = avx_walk();
     Rng rng(20261129);
     const int scenes = 12, packets = ray_budget(12000) / scenes;
     int hits = 0, total = 0;
+    // Walk 0: baseline; 1: AVX; 2: AVX with AVX-512 packets.
+    const auto choose = [](int walk) {
+        set_avx_walk(walk >= 1);
+        set_avx512_packets(walk == 2);
+    };
     for (int s = 0; s < scenes; ++s) {
         const double size = rng.log_uniform(-3, 3);
         const SceneSpec spec =
             s % 2 == 0 ? mesh_scene(rng, size) : random_scene(rng, rng.integer(1, 300), size);
         auto g = build_ok(spec, true);
         REQUIRE(g);
-        INFO("scene " << s << " size " << size << ", AVX available " << set_avx_walk(true));
+        choose(2);
+        INFO("scene " << s << " size " << size << ", AVX available " << avx_walk() << ", AVX-512 packets "
+                      << avx512_packets());
         for (int i = 0; i < packets; ++i) {
             Ray rays[Geometry::kMaxPacket];
             const Ray base = random_ray(rng, size);
@@ -133,29 +142,33 @@ TEST_CASE("packets under the walk built for AVX answer as under the baseline wal
                         rays);
             const int n = rng.integer(1, i % 4 < 2 ? 4 : Geometry::kMaxPacket);
             const double tmax = rng.uniform() < 0.7 ? kInf : rng.uniform(0, 2 * size);
-            RayStats sa, sb;
-            std::optional<HitRecord> a[Geometry::kMaxPacket], b[Geometry::kMaxPacket];
-            set_avx_walk(true);
-            g->intersect_packet(rays, n, tmax, sa, a);
-            set_avx_walk(false);
-            g->intersect_packet(rays, n, tmax, sb, b);
-            for (int k = 0; k < n; ++k) {
-                INFO("lane " << k << " of " << n);
-                REQUIRE(a[k].has_value() == b[k].has_value());
-                if (!a[k]) continue;
-                ++hits;
-                REQUIRE(a[k]->prim == b[k]->prim);
-                REQUIRE(a[k]->slot == b[k]->slot);
-                REQUIRE(a[k]->t == b[k]->t);
-                REQUIRE(a[k]->b1 == b[k]->b1);
-                REQUIRE(a[k]->b2 == b[k]->b2);
+            RayStats st[3];
+            std::optional<HitRecord> out[3][Geometry::kMaxPacket];
+            for (int walk = 0; walk < 3; ++walk) {
+                choose(walk);
+                g->intersect_packet(rays, n, tmax, st[walk], out[walk]);
             }
-            REQUIRE(sa.box_tests == sb.box_tests);  // the same nodes, leaves and rays entered
-            REQUIRE(sa.triangle_tests == sb.triangle_tests);
+            for (int walk = 1; walk < 3; ++walk) {
+                const auto &a = out[walk], &b = out[0];
+                for (int k = 0; k < n; ++k) {
+                    INFO("walk " << walk << ", lane " << k << " of " << n);
+                    REQUIRE(a[k].has_value() == b[k].has_value());
+                    if (!a[k]) continue;
+                    hits += walk == 1;
+                    REQUIRE(a[k]->prim == b[k]->prim);
+                    REQUIRE(a[k]->slot == b[k]->slot);
+                    REQUIRE(a[k]->t == b[k]->t);
+                    REQUIRE(a[k]->b1 == b[k]->b1);
+                    REQUIRE(a[k]->b2 == b[k]->b2);
+                }
+                REQUIRE(st[walk].box_tests == st[0].box_tests);  // the same nodes, leaves and rays entered
+                REQUIRE(st[walk].triangle_tests == st[0].triangle_tests);
+            }
             total += n;
         }
     }
     set_avx_walk(had);
+    set_avx512_packets(true);  // as at start-up: where the CPU has it
     CHECK(hits > total / 5);
 }
 
