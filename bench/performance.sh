@@ -405,7 +405,7 @@ embree_short_of() {
   if grep -q "wsd's walks: AVX" "$1"; then
     walk="AVX, chosen at run time" group="four" lanes="AVX" packet="AVX too (8 lanes)"
     grep -q "AVX-512 packets" "$1" &&
-      packet="AVX too (8 lanes), test their triangles eight rays at a time and their leaves' boxes sixteen with AVX-512"
+      packet="AVX too (8 lanes; with AVX-512 a leaf's box against sixteen rays and a triangle against eight at once)"
   fi
   para "" "Below 0.8× Embree in its default mode: ${short:-none}. What sets the two apart on the meshes:" \
        "wsd tests each triangle watertight in double precision ($group triangles a ray, or $group rays a" \
