@@ -30,7 +30,9 @@ bool select_aov(const std::string& name, AovSelection& selection);
 // True for .png .jpg .jpeg .bmp .tga .hdr .pfm .exr (case-insensitive).
 bool known_image_format(const std::string& path);
 bool is_exr_path(const std::string& path);
-// "cannot write 'PATH': unknown image format (use .png, …, .pfm or .exr)".
+// "cannot write 'PATH': unknown image format (use .png, …, .pfm or .exr)", or, for a directory
+// (or PATH ending in '/'), that it is one and a file in it to name instead; for '-', that images
+// are not written to stdout.
 std::string unknown_format_message(const std::string& path);
 
 // The sibling file of an auxiliary image: "out/s.png" and "albedo" → "out/s.albedo.pfm".

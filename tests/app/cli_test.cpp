@@ -60,6 +60,34 @@ TEST_CASE("usage errors exit with 2", "[cli]") {
     CHECK(files == std::vector<std::string>{"s.wsd"});
 }
 
+TEST_CASE("an output that is a directory is named as one, with a file in it to use", "[cli]") {
+    TempDir dir;
+    write_file(dir / "s.wsd", tiny_scene());
+    fs::create_directory(dir.path() / "out");
+    fs::create_directory(dir.path() / "shot.png");
+    for (const char* output : {"out", "out/", "new/"}) {
+        INFO(output);
+        const RunResult r = run_wsd(dir, std::string("render s.wsd --quiet -o ") + output);
+        CHECK(r.status == 2);
+        const std::string file = std::string(output).substr(0, 3) + "/image.png";
+        CHECK(r.err.find("it is a directory; name an image file in it, such as '" + file + "'") !=
+              std::string::npos);
+    }
+    const RunResult dash = run_wsd(dir, "render s.wsd --quiet -o -");
+    CHECK(dash.status == 2);
+    CHECK(dash.err.find("images are written to files, not to stdout") != std::string::npos);
+    const RunResult merged = run_wsd(dir, "merge a.pfm -o out");
+    CHECK(merged.status == 2);
+    CHECK(merged.err.find("'out': it is a directory") != std::string::npos);
+    // A directory whose name looks like an image: refused when it is written, and left as it was.
+    const RunResult png = run_wsd(dir, "render s.wsd --quiet -o shot.png");
+    CHECK(png.status != 0);
+    CHECK(png.err.find("shot.png") != std::string::npos);
+    CHECK(fs::is_directory(dir.path() / "shot.png"));
+    CHECK(fs::is_empty(dir.path() / "shot.png"));
+    CHECK(!fs::exists(dir.path() / "new"));
+}
+
 TEST_CASE("an unknown option is named even when a required argument is missing too", "[cli]") {
     TempDir dir;
     write_file(dir / "-x.wsd", tiny_scene());
