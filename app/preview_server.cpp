@@ -74,6 +74,18 @@ PreviewServer::PreviewServer(const PreviewState& state) : impl_(std::make_unique
         const_cast<httplib::Request&>(req).ranges.clear();  // the server's own, not const
         return httplib::Server::HandlerResponse::Unhandled;
     });
+    // The preview's resources are read only: other methods on them are 405 with the methods
+    // allowed (cpp-httplib's default would be 400 or 404, as for a path that does not exist).
+    const auto not_allowed = [](const httplib::Request& req, httplib::Response& res) {
+        res.status = 405;
+        res.set_header("Allow", "GET, HEAD");
+        res.set_content(req.method + " is not allowed on " + req.path + " (use GET or HEAD)\n", "text/plain");
+    };
+    const char* resources = "/|/status|/image|/events";
+    server.Post(resources, not_allowed);
+    server.Put(resources, not_allowed);
+    server.Patch(resources, not_allowed);
+    server.Delete(resources, not_allowed);
     server.Get("/status", [&st](const httplib::Request&, httplib::Response& res) {
         res.set_header("Cache-Control", "no-store");
         res.set_content(snapshot_json(st.snapshot()), "application/json");

@@ -285,6 +285,24 @@ def test_range_headers_are_ignored(work):
         conns.append(conn)
         check(line.startswith("HTTP/1.1 4") and time.monotonic() - start < 2,
               "a POST without Content-Length is refused soon: %s after %.1f s" % (line, time.monotonic() - start))
+        # Other methods on the preview's resources: 405 with the methods allowed; elsewhere 404.
+        for method in ("POST", "PUT", "PATCH", "DELETE"):
+            for path in ("/", "/status", "/image", "/events"):
+                conn, line = raw_request(
+                    p.port, "%s %s HTTP/1.1\r\nHost: wsd\r\nContent-Length: 2\r\n\r\n{}" % (method, path))
+                rest = b""
+                while b"\r\n\r\n" not in rest:
+                    chunk = conn.recv(4096)
+                    if not chunk:
+                        break
+                    rest += chunk
+                conn.close()
+                rest = rest.decode("latin-1")
+                check(line == "HTTP/1.1 405 Method Not Allowed" and "Allow: GET, HEAD" in rest,
+                      "%s %s is 405 with Allow: %s %r" % (method, path, line, rest[:200]))
+            conn, line = raw_request(p.port, "%s /nothing HTTP/1.1\r\nHost: wsd\r\nContent-Length: 0\r\n\r\n" % method)
+            conn.close()
+            check(line.startswith("HTTP/1.1 404"), "%s /nothing is 404: %s" % (method, line))
         p.stop()
     finally:
         for conn in conns:
