@@ -230,9 +230,10 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 
 std::string closest_match(std::string_view word, const std::vector<std::string>& candidates) {
     // Long words get a proportionally larger budget (about one edit per three letters), short
-    // ones one edit; a candidate is never suggested if the edits would replace most of it.
+    // ones one edit; a candidate is never suggested if the edits would replace most of it. A
+    // word of one letter is most likely a name of the scene's own (`f` is not a misspelt `if`).
     constexpr size_t max_word = 64;
-    if (word.empty() || word.size() > max_word) return "";
+    if (word.size() < 2 || word.size() > max_word) return "";
     const std::string w = lower(word);
     const size_t budget = std::max<size_t>(1, w.size() / 3);
     std::string best;

@@ -192,4 +192,10 @@ TEST_CASE("closest_match suggests near misses only", "[diagnostics]") {
     CHECK(closest_match("size", props).empty());
     CHECK(closest_match("", props).empty());
     CHECK(closest_match("radius", {}).empty());
+    // One letter is too little to guess from: `f` is not taken for `if`, nor `o` for `on`.
+    const std::vector<std::string> words = {"if", "in", "on", "for"};
+    CHECK(closest_match("f", words).empty());
+    CHECK(closest_match("o", words).empty());
+    CHECK(closest_match("fo", words) == "for");
+    CHECK(closest_match("iff", words) == "if");
 }
