@@ -45,8 +45,10 @@ CLI::Validator integer_in(long long lo, long long hi) {
         "INT in [" + std::to_string(lo) + " - " + std::to_string(hi) + "]");
 }
 
-// Whether `text` is, whole, a number strtod reads (into `value`): no leading space, nothing after.
+// Whether `text` is, whole, a number strtod reads (into `value`): no leading space, nothing after,
+// and decimal, as the language writes numbers (strtod would read 0x10 as 16).
 bool read_number(const std::string& text, double& value) {
+    if (text.find_first_of("xX") != std::string::npos) return false;
     char* end = nullptr;
     value = std::strtod(text.c_str(), &end);
     return !text.empty() && end == text.c_str() + text.size() &&

@@ -306,6 +306,8 @@ TEST_CASE("an option given twice, and a number option given something else, say 
         {"--clock 0.1 --clock 0.2 --clock 0.3", "--clock was given 3 times; it takes one value"},
         {"--clock abc", "--clock: 'abc' is not a number"},
         {"--clock ''", "--clock: '' is not a number"},
+        {"--clock 0x10", "--clock: '0x10' is not a number"},  // decimal, as scenes write numbers
+        {"--target-error 0x1p-7", "--target-error: '0x1p-7' is not a number"},
     };
     for (const Case& c : cases) {
         INFO(c.args);
