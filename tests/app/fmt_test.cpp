@@ -19,6 +19,22 @@ using namespace wsd::test;
 
 namespace {
 
+// Waits, up to 30 s, until process `pid` catches signal `sig` (its handler is installed: the
+// SigCgt mask of /proc/PID/status), so that a signal sent then is the program's to handle. A
+// fixed delay raced a slow start (a sanitized build on a busy machine). False on timeout.
+bool wait_until_catches(pid_t pid, int sig) {
+    const std::string status = "/proc/" + std::to_string(pid) + "/status";
+    for (int i = 0; i < 3000; ++i) {
+        std::ifstream in(status);
+        std::string line;
+        while (std::getline(in, line))
+            if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1))
+                return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+}
+
 const std::string messy = "sphere{radius 1 center<0,1,0>}\nlet a=1+2\n";
 const std::string canonical = "sphere { radius 1  center <0, 1, 0> }\nlet a = 1 + 2\n";
 
@@ -117,8 +133,8 @@ TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no te
           "[cli][fmt][signal]") {
     TempDir dir;
     std::string big;
-    // About two seconds of formatting on an idle two-core machine: the signal, 300 ms in, comes
-    // well after wsd's start and well before the end.
+    // About two seconds of formatting on an idle two-core machine: the signal, 100 ms after wsd
+    // installs its handler, comes well before the end.
     for (int i = 0; i < 800000; ++i)
         big += "let a" + std::to_string(i) + "=<1,2,3>*(" + std::to_string(i) + "-1)\n";
     write_file(dir / "big.wsd", big);
@@ -135,10 +151,13 @@ TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no te
             ::execl(WSD_BINARY, WSD_BINARY, "fmt", "-i", "big.wsd", static_cast<char*>(nullptr));
             ::_exit(127);
         }
-        std::this_thread::sleep_for(std::chrono::milliseconds(300));  // well into the formatting
+        // Once wsd handles the signal, and a little later, well into the formatting.
+        const bool catches = wait_until_catches(pid, signal_number);
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
         ::kill(pid, signal_number);
         int raw = 0;
         ::waitpid(pid, &raw, 0);
+        REQUIRE(catches);
         REQUIRE(WIFEXITED(raw));  // it stopped itself rather than being killed by the signal
         CHECK(WEXITSTATUS(raw) == expected);
         CHECK(list_files(dir) == std::vector<std::string>{"big.wsd"});
