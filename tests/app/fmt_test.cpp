@@ -19,15 +19,19 @@ using namespace wsd::test;
 
 namespace {
 
-// Waits, up to 30 s, until process `pid` catches signal `sig` (its handler is installed: the
-// SigCgt mask of /proc/PID/status), so that a signal sent then is the program's to handle. A
-// fixed delay raced a slow start (a sanitized build on a busy machine). False on timeout.
-bool wait_until_catches(pid_t pid, int sig) {
-    const std::string status = "/proc/" + std::to_string(pid) + "/status";
+// Waits, up to 30 s, until process `pid` runs `cmdline` (its arguments, each ended by '\0') and
+// catches signal `sig` (its handler is installed: the SigCgt mask of /proc/PID/status), so that
+// a signal sent then is the program's to handle. Before exec the child still has the test
+// runner's handlers, hence the command line. A fixed delay raced a slow start (a sanitized build
+// on a busy machine). False on timeout.
+bool wait_until_catches(pid_t pid, const std::string& cmdline, int sig) {
+    const std::string proc = "/proc/" + std::to_string(pid);
     for (int i = 0; i < 3000; ++i) {
-        std::ifstream in(status);
+        std::ifstream args(proc + "/cmdline");
+        const std::string running((std::istreambuf_iterator<char>(args)), std::istreambuf_iterator<char>());
+        std::ifstream in(proc + "/status");
         std::string line;
-        while (std::getline(in, line))
+        while (running == cmdline && std::getline(in, line))
             if (line.rfind("SigCgt:", 0) == 0 && (std::stoull(line.substr(7), nullptr, 16) >> (sig - 1) & 1))
                 return true;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -152,7 +156,9 @@ TEST_CASE("fmt -i stopped by SIGINT or SIGTERM exits 130 or 143 and leaves no te
             ::_exit(127);
         }
         // Once wsd handles the signal, and a little later, well into the formatting.
-        const bool catches = wait_until_catches(pid, signal_number);
+        const bool catches = wait_until_catches(
+            pid, std::string(WSD_BINARY) + '\0' + "fmt" + '\0' + "-i" + '\0' + "big.wsd" + '\0',
+            signal_number);
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
         ::kill(pid, signal_number);
         int raw = 0;
