@@ -136,9 +136,9 @@ bool is_exr_path(const std::string& path) {
 }
 
 std::string unknown_format_message(const std::string& path) {
-    // A directory (or a name ending in '/') gets told so, with the name of a file in it to use.
     if (path == "-")
         return "cannot write '-': images are written to files, not to stdout; name one, such as 'image.png'";
+    // A directory (or a name ending in '/') gets told so, with the name of a file in it to use.
     std::error_code ec;
     if (!path.empty() && (path.back() == '/' || std::filesystem::is_directory(path, ec)))
         return "cannot write '" + path + "': it is a directory; name an image file in it, such as '" +

@@ -1,9 +1,10 @@
 // The watertight triangle test (render/shapes.h: triangle_edges, finish_edges, triangle_hit) for
 // several (ray, triangle) pairs at once, one per SIMD lane: two with SSE2 (EdgesPair), four with
-// AVX (EdgesQuad) and eight with AVX-512 (EdgesOct, for packets), chosen at run time. Each lane does the
-// scalar code's operations with its roundings: a lane rules out exactly the pairs the scalar test would,
-// finishes (t, its error bound, the hit) as the scalar test does, and hands on a lane whose edge function is
-// zero, to be recomputed, as the scalar test has it then. Internal to render/.
+// AVX (EdgesQuad) and eight with AVX-512 (EdgesOct, for packets), chosen at run time. Each lane
+// does the scalar code's operations with its roundings: a lane rules out exactly the pairs the
+// scalar test would, finishes (t, its error bound, the hit) as the scalar test does, and hands on
+// a lane whose edge function is zero, to be recomputed, as the scalar test has it then. One
+// struct per register width: they differ in their intrinsics only. Internal to render/.
 #pragma once
 
 #include <cstdint>
