@@ -147,7 +147,7 @@ constexpr uint32_t kBinChunks = 32;
 constexpr uint32_t kTwoSetMin = 64;  // bin_range's second set of bins pays from this many references
 
 struct Shared {
-    std::vector<Ref>& refs;
+    HugePageVector<Ref>& refs;
     BvhOptions opt;
     std::atomic<int> idle;
     // Called once every subtree is built, before the root's own subtree from another thread is
@@ -156,7 +156,7 @@ struct Shared {
 };
 
 struct Task {
-    std::vector<BvhNode> nodes;
+    HugePageVector<BvhNode> nodes;
     int depth = 0;
 };
 
@@ -485,7 +485,7 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
     const int threads = thread_count(options.threads);
     // The references, in fixed chunks on every thread, with each chunk's bounds and centroid
     // bounds; those are merged in chunk order.
-    std::vector<Ref> refs(n);
+    HugePageVector<Ref> refs(n);
     const size_t chunks = (size_t{n} + kBvhChunk - 1) / kBvhChunk;
     std::vector<Range> chunk_bounds(chunks);
     std::vector<std::vector<Bounds3f>> scratch(static_cast<size_t>(threads));
@@ -516,7 +516,7 @@ Bvh build_bvh(size_t count, const BvhBoundsFn& bounds, const BvhOptions& options
         parallel_chunks(n, kBvhChunk, threads, [&](size_t, size_t begin, size_t end, int) {
             for (size_t i = begin; i < end; ++i) bvh.order[i] = refs[i].id();
         });
-        std::vector<Ref>().swap(refs);
+        HugePageVector<Ref>().swap(refs);
     };
     Shared s{refs, options, {threads - 1}, take_order};
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/aabb.h"
+#include "render/huge_pages.h"
 
 namespace wsd::render {
 
@@ -27,9 +28,9 @@ struct BvhOptions {
 };
 
 struct Bvh {
-    std::vector<BvhNode> nodes;   // nodes[0] is the root (empty when there are no primitives)
-    std::vector<uint32_t> order;  // leaves refer to order[first, first + count)
-    int depth = 0;                // longest root-to-leaf path, in edges
+    HugePageVector<BvhNode> nodes;   // nodes[0] is the root (empty when there are no primitives)
+    HugePageVector<uint32_t> order;  // leaves refer to order[first, first + count)
+    int depth = 0;                   // longest root-to-leaf path, in edges
 };
 
 // Every bound must be finite and non-empty. Depth stays below kMaxBvhDepth: past a depth cap
@@ -60,7 +61,7 @@ using WideLeafFn = std::function<bool(uint32_t first, uint32_t count)>;
 // mesh this left camera rays 3 % fewer boxes and 1.5 times the triangle tests, at the same rate;
 // shadow and diffuse rays went faster, and the tree took a fifth less memory.
 inline constexpr uint32_t kWideMergeLeaf = 4;
-std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable = {},
-                                     int threads = 1);
+HugePageVector<BvhWideNode> to_bvh_wide(const HugePageVector<BvhNode>& nodes,
+                                        const WideLeafFn& mergeable = {}, int threads = 1);
 
 }  // namespace wsd::render

@@ -68,7 +68,7 @@ class Collapse {
 public:
     // Filled bottom up: the subtrees below depth kSplitDepth on `threads` threads, then the top.
     static constexpr int kSplitDepth = 6;
-    Collapse(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
+    Collapse(const HugePageVector<BvhNode>& nodes, const WideLeafFn& mergeable, int threads)
         : nodes_(nodes), mergeable_(mergeable), plan_(nodes.size()) {
         below(0, kSplitDepth, roots_);
         std::sort(roots_.begin(), roots_.end());  // looked up by fill
@@ -171,7 +171,7 @@ private:
         return out;
     }
 
-    const std::vector<BvhNode>& nodes_;
+    const HugePageVector<BvhNode>& nodes_;
     const WideLeafFn& mergeable_;
     std::vector<uint64_t> plan_;
     std::vector<uint32_t> roots_;  // while filling: the subtrees filled first, in node order
@@ -180,7 +180,7 @@ private:
 
 // The children of the wide node for inner node `n`: its two children's subtrees spread over at
 // most kBvhWidth lanes at the least cost. Returns their number.
-int wide_children(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, uint32_t* kids) {
+int wide_children(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n, uint32_t* kids) {
     const int k = r.first_lanes(n);
     int count = 0;
     r.lanes(nodes[n].first, k, kids, count);
@@ -189,7 +189,7 @@ int wide_children(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t
 }
 
 // The number of wide nodes emit_wide writes for inner node `n`.
-size_t count_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n) {
+size_t count_wide(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
     size_t total = 1;
@@ -222,7 +222,7 @@ void set_lane(BvhWideNode& node, int i, const BvhNode& child) {
 // out[at + 1] on, in lane order, each placed by place(kid, index) which returns the index after
 // that subtree's last node. Returns the index after the last.
 template <class Place>
-uint32_t write_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
+uint32_t write_wide(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                     uint32_t at, Place&& place) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
@@ -243,7 +243,7 @@ uint32_t write_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32
 
 // Writes the wide node for inner node `n` at out[at] and, depth first, the nodes below it;
 // returns the index after the last.
-uint32_t emit_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
+uint32_t emit_wide(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                    uint32_t at) {
     return write_wide(nodes, r, n, out, at,
                       [&](uint32_t kid, uint32_t next) { return emit_wide(nodes, r, kid, out, next); });
@@ -257,7 +257,7 @@ struct WideJob {
 // The subtrees below the wide node for inner node `n` and `levels` more levels of its inner
 // children, in the order place_wide meets them, into `roots`. Returns the number of wide nodes in
 // those levels.
-uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, int levels,
+uint32_t subtrees_below(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n, int levels,
                         std::vector<uint32_t>& roots) {
     uint32_t kids[kBvhWidth];
     const int count = wide_children(nodes, r, n, kids);
@@ -275,7 +275,7 @@ uint32_t subtrees_below(const std::vector<BvhNode>& nodes, const Collapse& r, ui
 // Writes the wide node for inner node `n` at out[at]; its inner children's subtrees, placed where
 // emit_wide puts them, are written here down to `levels` more levels and left to `jobs` below.
 // The subtree of the k-th job holds sizes[k] wide nodes. Returns the index after the last.
-uint32_t place_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
+uint32_t place_wide(const HugePageVector<BvhNode>& nodes, const Collapse& r, uint32_t n, BvhWideNode* out,
                     uint32_t at, int levels, const std::vector<uint32_t>& sizes, std::vector<WideJob>& jobs) {
     return write_wide(nodes, r, n, out, at, [&](uint32_t kid, uint32_t next) {
         if (levels > 0) return place_wide(nodes, r, kid, out, next, levels - 1, sizes, jobs);
@@ -287,9 +287,9 @@ uint32_t place_wide(const std::vector<BvhNode>& nodes, const Collapse& r, uint32
 
 }  // namespace
 
-std::vector<BvhWideNode> to_bvh_wide(const std::vector<BvhNode>& nodes, const WideLeafFn& mergeable,
-                                     int threads) {
-    std::vector<BvhWideNode> out;
+HugePageVector<BvhWideNode> to_bvh_wide(const HugePageVector<BvhNode>& nodes, const WideLeafFn& mergeable,
+                                        int threads) {
+    HugePageVector<BvhWideNode> out;
     if (nodes.empty()) return out;
     if (nodes[0].count > 0) {
         BvhWideNode root = empty_wide_node();

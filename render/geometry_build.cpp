@@ -26,9 +26,9 @@ struct Builder {
     Geometry::Impl& g;
     bool prototype = false;  // members may inherit their material; no planes, no instances
     int threads = 0;
-    std::vector<Bounds3f> bounds;   // per bounded primitive but triangles, canonical order
-    std::vector<uint32_t> entries;  // encoded entries of every bounded primitive, same order
-    std::vector<uint8_t> inherits;  // prototypes: 1 where the primitive inherits its material
+    std::vector<Bounds3f> bounds;      // per bounded primitive but triangles, canonical order
+    HugePageVector<uint32_t> entries;  // encoded entries of every bounded primitive, same order
+    std::vector<uint8_t> inherits;     // prototypes: 1 where the primitive inherits its material
     uint32_t next_prim = 0;
     size_t stored = 0, instances = 0;  // for the limits: primitives stored, instances
     std::vector<uint8_t> counted;      // per prototype: its primitives are in `stored`
@@ -499,7 +499,7 @@ void Builder::finish_bvh() {
     std::array<uint32_t, 4> sum{};
     for (auto& f : first)
         for (size_t kind = 0; kind < 4; ++kind) sum[kind] += std::exchange(f[kind], sum[kind]);
-    std::vector<TriPrim> tris(g.tris.size());
+    HugePageVector<TriPrim> tris(g.tris.size());
     std::vector<SpherePrim> spheres(g.spheres.size());
     std::vector<BoxPrim> boxes(g.boxes.size());
     parallel_chunks(n, kBvhChunk, threads, [&](size_t c, size_t begin, size_t end, int) {
@@ -537,7 +537,7 @@ void Builder::finish_bvh() {
         std::none_of(g.order.begin(), g.order.end(), [](uint32_t e) { return (e & kTransmissiveBit) != 0; });
     // Entry k is then k itself (encode_entry of an opaque triangle at slot k): not stored, 4 bytes
     // a triangle less.
-    if (g.tris_in_order) std::vector<uint32_t>().swap(g.order);
+    if (g.tris_in_order) HugePageVector<uint32_t>().swap(g.order);
 }
 
 }  // namespace
@@ -549,10 +549,8 @@ bool build_geometry_into(Geometry::Impl& g, const SceneSpec& spec, const std::ve
     Builder b{spec, shapes, errors, g, prototype, threads, {}, {}, {}, 0, 0, 0, {}, 0, 0};
     b.counted.assign(spec.prototypes.size(), 0);
     // Every buffer at its final size up front: a million-triangle mesh would otherwise copy
-    // them while growing, and fault in fresh pages for each copy. No huge pages (madvise): on a
-    // VM that has run a while, the kernel takes a 2 MiB page from memory the host has not backed
-    // yet, about 10 ms per MiB to fault in, where 4 KiB pages come first from memory freed
-    // before, 0.4 ms per MiB (measured; the 10⁷-triangle build went from 4.1 to 3.1 s).
+    // them while growing, and fault in fresh pages for each copy. The large ones are in huge
+    // pages (render/huge_pages.h).
     size_t n_tris = 0, n_verts = 0, n_bounded = 0;
     for (const ShapeSpec& s : shapes) {
         const bool mesh = s.kind == ShapeKind::Mesh && s.mesh;

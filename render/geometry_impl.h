@@ -57,25 +57,25 @@ struct PlaneExtra {
 };
 
 struct Geometry::Impl {
-    std::vector<Vec3f> verts;  // world-space triangle vertices, shared within a mesh
-    std::vector<TriPrim> tris;
+    HugePageVector<Vec3f> verts;  // world-space triangle vertices, shared within a mesh
+    HugePageVector<TriPrim> tris;
     std::vector<SpherePrim> spheres;
     std::vector<BoxPrim> boxes;
     std::vector<PlanePrim> planes;
     std::vector<Transform> xforms;
     std::vector<ShapeInfo> shapes;
     std::vector<uint32_t> shape_first;  // shapes[i].first_prim, for lookups by canonical id
-    std::vector<TriExtra> tri_extra;
+    HugePageVector<TriExtra> tri_extra;
     std::vector<PlaneExtra> plane_extra;
     std::vector<OtherPrim> others;                       // PrimKind::Other entries' slots
     std::vector<QuadricPrim> quadrics;                   // cylinders, cones, tori, discs
     std::vector<CsgPrim> csgs;                           // CSG solids
     std::vector<InstancePrim> instances;                 // instances of prototypes
     std::vector<std::unique_ptr<Prototype>> prototypes;  // SceneSpec::prototypes, built when used
-    std::vector<BvhWideNode> nodes;  // the BVH in its wide traversal form; empty without BVH
-    std::vector<uint32_t> order;     // encoded entries; leaf ranges (BVH) or canonical order; empty
-                                     // with tris_in_order
-    std::vector<uint8_t> inherits;   // a prototype's: per order entry, 1 when its material is inherited
+    HugePageVector<BvhWideNode> nodes;  // the BVH in its wide traversal form; empty without BVH
+    HugePageVector<uint32_t> order;     // encoded entries; leaf ranges (BVH) or canonical order; empty
+                                        // with tris_in_order
+    std::vector<uint8_t> inherits;      // a prototype's: per order entry, 1 when its material is inherited
     bool use_bvh = true;
     bool has_transmissive = false;
     // Every entry is an opaque triangle and entry k names tris[k]: a BVH over triangles alone,

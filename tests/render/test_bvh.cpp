@@ -343,7 +343,7 @@ TEST_CASE("R52 the built tree and its wide form are the same, node for node, wit
         BvhOptions opt;
         opt.threads = threads;
         Bvh bvh = build_bvh(boxes, opt);
-        std::vector<BvhWideNode> wide = to_bvh_wide(bvh.nodes, merge_all, threads);
+        HugePageVector<BvhWideNode> wide = to_bvh_wide(bvh.nodes, merge_all, threads);
         return std::make_pair(std::move(bvh), std::move(wide));
     };
     auto [one, one4] = tree(1);

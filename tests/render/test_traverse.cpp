@@ -22,7 +22,7 @@ constexpr float kInfF = std::numeric_limits<float>::infinity();
 
 struct Boxes {
     std::vector<Bounds3f> bounds;
-    std::vector<BvhWideNode> nodes;
+    HugePageVector<BvhWideNode> nodes;
 };
 
 // n random boxes of assorted sizes in [−10, 10]³, and their 4-wide BVH.
@@ -57,7 +57,7 @@ using Leaf = std::pair<uint32_t, uint32_t>;  // first, count
 // The leaves (by their order range) whose own box the ray enters within t_limit, found by testing
 // every leaf lane of every node. A box's slab test never rejects a ray its descendant's accepts
 // (rounded products are monotone), so a walk without pruning must visit exactly these.
-std::vector<Leaf> brute_force_leaves(const std::vector<BvhWideNode>& nodes, const RayBoxTest& r,
+std::vector<Leaf> brute_force_leaves(const HugePageVector<BvhWideNode>& nodes, const RayBoxTest& r,
                                      float t_limit) {
     std::vector<Leaf> out;
     for (const BvhWideNode& node : nodes) {
@@ -88,7 +88,7 @@ struct Recorder {
 };
 
 template <WalkOrder kWalkOrder, int kStopAt = 0>
-std::pair<bool, std::vector<Leaf>> record(const std::vector<BvhWideNode>& nodes, const RayBoxTest& r,
+std::pair<bool, std::vector<Leaf>> record(const HugePageVector<BvhWideNode>& nodes, const RayBoxTest& r,
                                           float limit, uint64_t& visits) {
     Recorder<kWalkOrder, kStopAt> q{r, limit, {}};
     const bool stopped = walk_bvh(nodes.data(), q, visits);
@@ -144,7 +144,7 @@ namespace {
 // Checks the lanes of a wide tree over `primitives` primitives: empty lanes hold no child and an
 // empty box, every node but the root is one lane's child, and the leaves cover each primitive
 // once. Returns the largest leaf.
-uint32_t check_lanes(const std::vector<BvhWideNode>& nodes, size_t primitives) {
+uint32_t check_lanes(const HugePageVector<BvhWideNode>& nodes, size_t primitives) {
     std::vector<int> covered(primitives, 0);
     uint32_t largest = 0;
     size_t inner_lanes = 0;
