@@ -368,9 +368,9 @@ embree_table() {
        "origins are wsd's error-bounded offsets. Rates are rays per CPU-second, the median of 5 passes" \
        "(3 on the largest mesh) taken in turn." \
        "" "Builds of the meshes. Wall times on a busy machine include waiting for a core, and every build" \
-       "includes faulting in its memory: on a VM, about 0.4 ms per MiB for memory freed before and about" \
-       "10 ms per MiB for memory the host has not backed yet, so a build that is the first to touch" \
-       "memory is slower:" \
+       "includes faulting in its memory (wsd maps its large arrays in 2 MiB pages where the kernel" \
+       "allows: render/huge_pages.h); on a VM, a build that is the first to touch memory also waits for" \
+       "the host to back it:" \
        "" "| scene | triangles | wsd build, 2 threads: wall (CPU) | wsd bytes/triangle (+ mesh data) | Embree build, 2 threads: wall |" \
        "|---|---:|---:|---:|---:|"
   awk -F'|' '$1 == "build" && $2 != "cornell" { printf "| %s | %d | %.2f s (%.2f s) | %s (+ %s) | %.2f s |\n", $2, $3, $4, $5, $6, $7, $8 }' "$f" >>"$page"
@@ -678,9 +678,10 @@ if note not in head:
     head = head.rstrip("\n") + "\n\n" + note
 head = head.rstrip("\n") + "\n\n"
 fresh = dict(new)
-out = head + "".join(fresh.pop(title, body) for title, body in old)
-out += "".join(body for title, body in new if title in fresh)
-sys.stdout.write(out)
+bodies = [fresh.pop(title, body) for title, body in old]
+bodies += [body for title, body in new if title in fresh]
+# Every section ends in one blank line, wherever the page's split left its newlines.
+sys.stdout.write(head + "".join(b.rstrip("\n") + "\n\n" for b in bodies).rstrip("\n") + "\n")
 PY
 fi
 mv "$out.tmp" "$out"
