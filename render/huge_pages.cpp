@@ -18,7 +18,7 @@ std::size_t round_up(std::size_t x, std::size_t to) {
 }  // namespace
 
 void* huge_allocate(std::size_t bytes, std::size_t align) {
-    if (bytes < kHugePageMin) return ::operator new (bytes, std::align_val_t{align});
+    if (!kMapsHugePages || bytes < kHugePageMin) return ::operator new (bytes, std::align_val_t{align});
     if (bytes > static_cast<std::size_t>(-1) - 2 * kHugePage) throw std::bad_alloc();
     // Mapped with a huge page of slack, then trimmed to start on a 2 MiB boundary: a block that
     // started mid huge page could not use one there. Its tail, past its last whole huge page,
@@ -40,7 +40,7 @@ void* huge_allocate(std::size_t bytes, std::size_t align) {
 
 void huge_deallocate(void* p, std::size_t bytes, std::size_t align) noexcept {
     if (!p) return;
-    if (bytes < kHugePageMin) return ::operator delete (p, std::align_val_t{align});
+    if (!kMapsHugePages || bytes < kHugePageMin) return ::operator delete (p, std::align_val_t{align});
     munmap(p, round_up(bytes, kPage));
 }
 

@@ -19,6 +19,14 @@ namespace wsd::render {
 
 inline constexpr std::size_t kHugePageMin = std::size_t{2} << 20;
 
+// AddressSanitizer checks accesses to memory from operator new, not to memory mapped here: its
+// builds take every block from operator new, so that the tree's arrays stay checked.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kMapsHugePages = false;
+#else
+inline constexpr bool kMapsHugePages = true;
+#endif
+
 // Raw blocks: huge_allocate(bytes, align) for align at most 4096; throws std::bad_alloc.
 // huge_deallocate takes the same byte count and alignment as the huge_allocate that returned p.
 void* huge_allocate(std::size_t bytes, std::size_t align);
