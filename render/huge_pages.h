@@ -3,12 +3,12 @@
 // 2 MiB and advised MADV_HUGEPAGE, so that the kernel backs them with 2 MiB pages where it can
 // (Linux's "madvise" setting, the usual default, gives huge pages only to memory advised so).
 // Touching fresh memory then takes one page fault per 2 MiB instead of one per 4 KiB: on a VM where
-// a fault is expensive (2 cores, AMD EPYC) the 10⁷-triangle mesh's build went from 5.5 to 3.4 s on
-// 2 threads, the 10⁶-triangle one from 0.50 to 0.27 s; tracing rays on it was as fast as before.
-// (On another VM, whose free memory the host had not backed yet, huge pages were once slower to
-// fault in than 4 KiB pages recycled from freed memory.) Where the kernel has no huge pages the
-// advice is ignored and the memory is ordinary; smaller blocks come from operator new. Nothing
-// stored depends on where memory comes from, so neither does any image.
+// a fault is expensive (2 cores, AMD EPYC) the 10⁷-triangle mesh's build went from about 5.5 s to
+// 3.4-4.0 s on 2 threads, the 10⁶-triangle one from 0.50 to 0.27 s; tracing rays on it was as fast
+// as before. (On another VM, whose free memory the host had not backed yet, huge pages were once
+// slower to fault in than 4 KiB pages recycled from freed memory.) Where the kernel has no huge
+// pages the advice is ignored and the memory is ordinary; smaller blocks come from operator new.
+// Nothing stored depends on where memory comes from, so neither does any image.
 #pragma once
 
 #include <cstddef>

@@ -1,14 +1,12 @@
 // HugePageAllocator: large blocks start on a 2 MiB boundary, are advised for huge pages and are
 // unmapped when freed; small blocks and vectors that grow across the threshold behave as usual.
 #include <sys/mman.h>
-#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "render/huge_pages.h"
